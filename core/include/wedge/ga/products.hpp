@@ -168,6 +168,15 @@ Bivector<N> commutator(const Bivector<N>& a, const Bivector<N>& b) {
   ga::detail::product<Terms<N, Set::Bivector, Set::Bivector, Set::Bivector, Product::Commutator>>(a, b, o);
   return o;
 }
+// The k x k matrix [a]x with [a]x b = a x b (commutator), for linearising gyroscopic terms.
+template <int N>
+BivMat<N> commutator_matrix(const Bivector<N>& a) {
+  using namespace ga;
+  BivMat<N> m = BivMat<N>::Zero();
+  for (const Term& t : Terms<N, Set::Bivector, Set::Bivector, Set::Bivector, Product::Commutator>::table)
+    m(t.out, t.b) += t.sign * a[t.a];
+  return m;
+}
 // <A B>_0 = -sum A_ij B_ij: the scalar product of bivectors.
 template <int N>
 double scalar_product(const Bivector<N>& a, const Bivector<N>& b) {

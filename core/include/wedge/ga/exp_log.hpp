@@ -1,0 +1,195 @@
+// The exponential of any bivector and the logarithm of a rotor, exact in every dimension.
+//
+// A general bivector is a sum of commuting simple bivectors in orthogonal planes (the invariant
+// decomposition), B = sum_i t_i u_i^v_i, so exp(B) = prod_i (cos t_i + sin t_i u_i^v_i); in 4D that is a
+// double rotation. 2D and 3D bivectors are always simple; 4D has a closed form through the self-dual /
+// anti-self-dual split; 5D and 6D find the planes from the eigenvectors of the generator.
+// Convention: R = exp(B) rotates u toward v by -2t in each plane, so dR/dt = -1/2 w R gives R = exp(-w t/2).
+#pragma once
+
+#include <cmath>
+#include <Eigen/Eigenvalues>
+
+#include "wedge/ga/products.hpp"
+
+namespace wedge {
+
+// One plane of the invariant decomposition: B_i = angle * (u ^ v), with u, v orthonormal.
+template <int N>
+struct BivectorPlane {
+  double angle = 0.0;
+  Vec<N> u = Vec<N>::Zero(), v = Vec<N>::Zero();
+};
+template <int N>
+struct BivectorDecomposition {
+  std::array<BivectorPlane<N>, N / 2> planes{};
+  int count = 0;
+};
+
+namespace ga::detail {
+
+// sin(x)/x, accurate near 0.
+inline double sinc(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
+
+// In 4D: B -> B I for the pseudoscalar I = e0123, as a signed permutation of the 6 components.
+struct Dual4 {
+  std::array<int, 6> index{};
+  std::array<double, 6> sign{};
+};
+constexpr Dual4 make_dual4() {
+  constexpr auto ord = Blades<4>::order<Set::Bivector>();
+  constexpr auto idx = Blades<4>::index<Set::Bivector>();
+  Dual4 d{};
+  for (int i = 0; i < 6; ++i) {
+    d.index[i] = idx[ord[i] ^ 0xFu];
+    d.sign[i] = blade_product_sign(ord[i], 0xFu);
+  }
+  return d;
+}
+inline constexpr Dual4 kDual4 = make_dual4();
+
+inline Bivector<4> dual4(const Bivector<4>& b) {
+  Bivector<4> o;
+  for (int i = 0; i < 6; ++i) o[kDual4.index[i]] = kDual4.sign[i] * b[i];
+  return o;
+}
+
+}  // namespace ga::detail
+
+// Peels the planes of a skew generator matrix W (W x = x . B) one at a time, largest first: the top
+// eigenvector u of W^T W, its partner v = W u / |W u|, then deflation W <- P W P with P the projector off
+// span{u, v}. Re-solving after each peel keeps every plane accurate to round-off of |B| even when the
+// angles differ by many orders of magnitude; an isoclinic (degenerate) eigenspace yields any valid split.
+template <int N>
+BivectorDecomposition<N> decompose_generator(Mat<N> w) {
+  BivectorDecomposition<N> out;
+  const double scale = w.norm();
+  for (int p = 0; p < N / 2; ++p) {
+    Eigen::SelfAdjointEigenSolver<Mat<N>> eig(w.transpose() * w);
+    const Vec<N> u = eig.eigenvectors().col(N - 1);
+    const Vec<N> wu = w * u;
+    const double angle = wu.norm();
+    if (!(angle > 4e-16 * scale)) break;  // the rest is round-off
+    const Vec<N> v = wu / angle;
+    out.planes[out.count++] = BivectorPlane<N>{angle, u, v};
+    const Mat<N> proj = Mat<N>::Identity() - u * u.transpose() - v * v.transpose();
+    w = proj * w * proj;
+  }
+  return out;
+}
+
+// The invariant decomposition of any bivector into at most N/2 commuting orthogonal simple parts.
+template <int N>
+BivectorDecomposition<N> decompose(const Bivector<N>& b) {
+  return decompose_generator<N>(generator_matrix(b));
+}
+
+// exp of a general bivector by the invariant decomposition (any N; the path used for N >= 5).
+template <int N>
+Rotor<N> exp_by_decomposition(const Bivector<N>& b) {
+  const BivectorDecomposition<N> d = decompose(b);
+  Rotor<N> r = Rotor<N>::identity();
+  for (int i = 0; i < d.count; ++i) {
+    const BivectorPlane<N>& p = d.planes[i];
+    r = r * Rotor<N>::from_parts(std::cos(p.angle), outer<N>(p.u, p.v) * std::sin(p.angle));
+  }
+  return r;
+}
+
+template <int N>
+Rotor<N> exp(const Bivector<N>& b) {
+  using ga::detail::sinc;
+  if constexpr (N <= 3) {  // every bivector is simple: B^2 = -|B|^2
+    const double t = b.norm();
+    return Rotor<N>::from_parts(std::cos(t), b * sinc(t));
+  } else if constexpr (N == 4) {
+    // B = S + A with S I = S, A I = -A (I = e0123): S and A commute, S A = 0, and
+    // exp(B) = (cos p + cos q)/2 + S sinc(p) + A sinc(q) + I (cos p - cos q)/2, p = sqrt2|S|, q = sqrt2|A|.
+    const Bivector<4> bi = ga::detail::dual4(b);
+    const Bivector<4> s = (b + bi) * 0.5, a = (b - bi) * 0.5;
+    const double p = std::sqrt(2.0) * s.norm(), q = std::sqrt(2.0) * a.norm();
+    const double cp = std::cos(p), cq = std::cos(q);
+    Rotor<4> r = Rotor<4>::from_parts(0.5 * (cp + cq), s * sinc(p) + a * sinc(q));
+    r[7] = 0.5 * (cp - cq);
+    return r;
+  } else {
+    return exp_by_decomposition(b);
+  }
+}
+
+// log of a rotor from the rotation planes of its matrix M (any N; the path used for N >= 5), such that
+// exp(log R) = R including the sign of R (a full turn is R = -1). Planes turned by more than 60 degrees
+// are peeled from the eigenvectors of I - (M + M^T)/2 (eigenvalue 1 - cos a); the rest from the skew part
+// (M - M^T)/2 (eigenvalue sin a), where small angles keep their full precision.
+template <int N>
+Bivector<N> log_by_decomposition(const Rotor<N>& r) {
+  Mat<N> m = to_matrix(r);
+  Bivector<N> out;
+  std::array<std::pair<double, Bivector<N>>, N> planes{};  // N/2 used; N keeps -Warray-bounds quiet
+  int count = 0;
+  auto add_plane = [&](const Vec<N>& u, const Vec<N>& v) {
+    const Vec<N> mu = m * u;
+    const double alpha = std::atan2(v.dot(mu), u.dot(mu));  // M u = cos(a) u + sin(a) v
+    planes[count++] = {alpha, outer<N>(u, v)};
+    out += outer<N>(u, v) * (-0.5 * alpha);
+    const Mat<N> proj = Mat<N>::Identity() - u * u.transpose() - v * v.transpose();
+    m = proj * m * proj + (Mat<N>::Identity() - proj);  // the peeled plane is now fixed
+  };
+  while (count < N / 2) {  // large turns
+    const Mat<N> sym = 0.5 * (m + m.transpose());
+    Eigen::SelfAdjointEigenSolver<Mat<N>> eig(Mat<N>::Identity() - sym);
+    if (eig.eigenvalues()[N - 1] < 0.5) break;
+    const Vec<N> u = eig.eigenvectors().col(N - 1);
+    Vec<N> v = m * u - u.dot(m * u) * u;
+    if (v.norm() < 1e-4) {  // near a half turn: the partner is the next eigenvector of the plane
+      v = eig.eigenvectors().col(N - 2);
+      v -= u.dot(v) * u;
+    }
+    add_plane(u, v.normalized());
+  }
+  if (count < N / 2) {  // small turns
+    const BivectorDecomposition<N> d = decompose_generator<N>(0.5 * (m - m.transpose()));
+    for (int i = 0; i < d.count && count < N / 2; ++i) add_plane(d.planes[i].u, d.planes[i].v);
+  }
+  // exp(out) is +R or -R; fix the sign with a full turn (+-pi) in the most turned plane.
+  if (exp_by_decomposition(out).c.dot(r.c) < 0.0) {
+    if (count == 0) return Bivector<N>::basis(0, 1) * M_PI;  // R = -1
+    int k = 0;
+    for (int i = 1; i < count; ++i)
+      if (std::abs(planes[i].first) > std::abs(planes[k].first)) k = i;
+    out += planes[k].second * (planes[k].first > 0 ? M_PI : -M_PI);
+  }
+  return out;
+}
+
+template <int N>
+Bivector<N> log(const Rotor<N>& r) {
+  if constexpr (N == 2) {
+    return Bivector<2>::basis(0, 1) * std::atan2(r[1], r[0]);
+  } else if constexpr (N == 3) {
+    const Bivector<3> b = r.bivector();
+    const double s = b.norm();
+    if (s == 0.0) return r[0] >= 0 ? Bivector<3>{} : Bivector<3>::basis(0, 1) * M_PI;
+    return b * (std::atan2(s, r[0]) / s);
+  } else if constexpr (N == 4) {
+    // Invert the closed form of exp: cos p = r0 + r4, cos q = r0 - r4, S_R = S sinc(p), A_R = A sinc(q).
+    const Bivector<4> b = r.bivector(), bi = ga::detail::dual4(b);
+    const Bivector<4> sr = (b + bi) * 0.5, ar = (b - bi) * 0.5;
+    const double r4 = r[7];
+    auto part = [](const Bivector<4>& x, double cosine, const Bivector<4>& half_turn) {
+      const double n = x.norm();
+      const double angle = std::atan2(std::sqrt(2.0) * n, cosine);  // in [0, pi]
+      if (n == 0.0) return cosine >= 0 ? Bivector<4>{} : half_turn;
+      return x * (angle / (std::sqrt(2.0) * n));
+    };
+    // Half turns (p or q = pi) have S_R = 0: use a fixed self-dual / anti-self-dual plane pair.
+    Bivector<4> hs, ha;
+    hs.c << M_PI / 2, 0, 0, 0, 0, -M_PI / 2;  // (pi/2)(e01 - e23): S I = S
+    ha.c << M_PI / 2, 0, 0, 0, 0, M_PI / 2;   // (pi/2)(e01 + e23): A I = -A
+    return part(sr, r[0] + r4, hs) + part(ar, r[0] - r4, ha);
+  } else {
+    return log_by_decomposition(r);
+  }
+}
+
+}  // namespace wedge
