@@ -35,7 +35,7 @@ RotorFactors<N> factorize_matrix(Mat<N> m) {
   RotorFactors<N> f;
   for (int i = 0; i < N - 1; ++i) {
     Vec<N> b = m.col(i);
-    b.head(i).setZero();  // orthogonal to the axes already fixed
+    for (int j = 0; j < i; ++j) b[j] = 0.0;  // orthogonal to the axes already fixed
     const double len = b.norm();
     if (!(len > 0.0)) continue;  // not a rotation; nothing sensible to peel
     b /= len;
