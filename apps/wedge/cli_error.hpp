@@ -1,0 +1,36 @@
+// Errors of the `wedge` program and its exit codes.
+//
+// Exit codes: 0 success; 2 bad input (unreadable or invalid file, bad option, usage error, a simulation
+// that would produce a non-finite value); 1 an unexpected internal error. Every failure prints one
+// message on stderr and leaves no output file behind.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace wedge::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInternal = 1;
+inline constexpr int kExitBadInput = 2;
+inline constexpr const char* kExitCodesText = "Exit codes: 0 success, 2 bad input or usage, 1 internal error.";
+
+// A complete, user-facing message (already prefixed with the file name where there is one).
+class Failure : public std::runtime_error {
+ public:
+  explicit Failure(const std::string& what) : std::runtime_error(what) {}
+};
+
+// A problem at a place in a JSON document, e.g. path "bodies[2].shape.half_extents" and what
+// "expected 4 numbers, got 3". The loader catches it and prefixes the file name.
+class JsonError : public std::runtime_error {
+ public:
+  JsonError(std::string path, const std::string& what)
+      : std::runtime_error(path.empty() ? what : path + ": " + what), path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace wedge::cli

@@ -1,0 +1,183 @@
+// Scene loading: JSON -> Scene<N> -> World<N>; explicitly instantiated for N = 2..6.
+// Shapes are read in shape_json.cpp. The schema is in docs/scene-format.md.
+#include "scene_json.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "wedge/error.hpp"
+#include "wedge/ga/products.hpp"
+
+namespace wedge::cli {
+
+namespace {
+
+constexpr double kRotorTolerance = 1e-6;
+
+// How far `r` is from a rotation: |R ~R - 1|, and for every basis vector e_i the size of the parts of
+// R e_i ~R that are not a vector (from 5D on, R ~R = 1 alone does not make R a rotor).
+template <int N>
+double rotor_defect(const Rotor<N>& r) {
+  double defect = (r * reverse(r) - Rotor<N>::identity()).norm();
+  const Multivector<N> rm = to_multivector(r), rrev = to_multivector(reverse(r));
+  for (int i = 0; i < N; ++i) {
+    const Multivector<N> image = rm * to_multivector<N>(Vec<N>::Unit(i)) * rrev;
+    defect = std::max(defect, (image - to_multivector<N>(vector_part(image))).norm());
+  }
+  return defect;
+}
+
+double read_ranged(ObjectReader& obj, const std::string& key, double fallback, double lo, double hi,
+                   const char* range_text) {
+  const std::optional<Node> n = obj.optional(key);
+  if (!n) return fallback;
+  const double v = n->number();
+  if (!(v >= lo && v <= hi)) n->fail(std::string("must be ") + range_text + " (got " + n->json().dump() + ")");
+  return v;
+}
+
+template <int N>
+SceneBody<N> read_body(const Node& node, int index) {
+  ObjectReader obj(node);
+  BodyDef<N> def;
+  Material material;
+
+  def.name = "body" + std::to_string(index);
+  if (auto n = obj.optional("name")) {
+    def.name = n->string();
+    if (def.name.empty()) n->fail("must not be empty");
+  }
+
+  const bool is_static = obj.boolean_or("static", false);
+  const bool is_kinematic = obj.boolean_or("kinematic", false);
+  if (is_static && is_kinematic) node.fail("a body cannot be both \"static\" and \"kinematic\"");
+  def.type = is_static ? BodyType::Static : is_kinematic ? BodyType::Kinematic : BodyType::Dynamic;
+
+  const Node shape_node = obj.required("shape");
+  Shape<N> shape = read_shape<N>(shape_node);
+  const bool halfspace = !shape.bounded();
+  if (halfspace && !is_static)
+    shape_node.fail("a halfspace is infinite and has no mass: its body must be \"static\": true");
+
+  if (auto n = obj.optional("position")) def.position = n->vec<N>();
+  if (auto n = obj.optional("rotor")) {
+    def.rotor = n->coeffs<Rotor<N>>();
+    const double defect = rotor_defect(def.rotor);
+    if (!(defect <= kRotorTolerance))
+      n->fail("not a rotation: R ~R differs from 1 (or R x ~R from a vector) by " + format_number(defect) +
+              " (tolerance 1e-6); components are (1, e01, e02, .., e12, .., e0123, ..)");
+  }
+  if (auto n = obj.optional("velocity")) def.velocity = n->vec<N>();
+  if (auto n = obj.optional("angular_velocity")) def.angular_velocity = n->coeffs<Bivector<N>>();
+  def.linear_drag = read_ranged(obj, "linear_drag", 0.0, 0.0, HUGE_VAL, ">= 0");
+  def.angular_drag = read_ranged(obj, "angular_drag", 0.0, 0.0, HUGE_VAL, ">= 0");
+
+  material.restitution = read_ranged(obj, "restitution", 0.0, 0.0, 1.0, "in [0, 1]");
+  material.friction = read_ranged(obj, "friction", 0.5, 0.0, HUGE_VAL, ">= 0");
+  material.kinetic_friction = read_ranged(obj, "kinetic_friction", 0.4, 0.0, HUGE_VAL, ">= 0");
+
+  const std::optional<Node> density_node = obj.optional("density");
+  const std::optional<Node> mass_node = obj.optional("mass");
+  obj.finish();
+
+  if (halfspace) {
+    if (density_node || mass_node)
+      (density_node ? *density_node : *mass_node).fail("a halfspace is infinite and has no mass or density");
+    // local_center 0: the body frame is the halfspace's frame.
+    return SceneBody<N>{std::move(def), std::move(shape), 0.0, std::nullopt, material};
+  }
+  if (density_node && mass_node) mass_node->fail("give either \"density\" or \"mass\", not both");
+  double density = 1.0;
+  if (density_node) {
+    density = density_node->number();
+    if (!(density > 0.0)) density_node->fail("must be > 0 (got " + density_node->json().dump() + ")");
+  }
+  MassProperties<N> mp;
+  try {
+    mp = mass_properties<N>(shape, density);
+    if (mass_node) {
+      const double m = mass_node->number();
+      if (!(m > 0.0)) mass_node->fail("must be > 0 (got " + mass_node->json().dump() + ")");
+      mp = with_mass<N>(mp, m);
+      density = m / mp.volume;
+    }
+  } catch (const Error& e) {
+    throw JsonError(shape_node.path(), e.what());
+  }
+  if (!(mp.mass > 0.0) || !std::isfinite(mp.mass) || !std::isfinite(density) || !mp.inertia.allFinite() ||
+      !mp.center.allFinite())
+    shape_node.fail("mass properties are not positive and finite (mass " + format_number(mp.mass) +
+                    "); is the shape degenerate or the density extreme?");
+  def.mass = mp.mass;
+  def.local_center = mp.center;
+  def.inertia = mp.inertia;
+  return SceneBody<N>{std::move(def), std::move(shape), density, mp, material};
+}
+
+}  // namespace
+
+int read_dim(const Json& doc, const std::string& file) {
+  return with_file_context(file, "", [&] {
+    const Node root(doc, "");
+    if (!doc.is_object()) root.fail("expected a JSON object at the top level, got " + root.describe_type());
+    const auto it = doc.find("dim");
+    if (it == doc.end()) root.fail("missing key \"dim\" (the dimension, 2..6)");
+    const Node dim(*it, "dim");
+    const std::int64_t n = dim.integer();
+    if (n < kMinDim || n > kMaxDim) dim.fail("must be 2, 3, 4, 5 or 6 (got " + std::to_string(n) + ")");
+    return int(n);
+  });
+}
+
+template <int N>
+Scene<N> load_scene(const Json& doc, const std::string& file) {
+  return with_file_context(file, "", [&] {
+    Scene<N> scene;
+    ObjectReader obj(Node(doc, ""));
+    obj.required("dim");  // read_dim checked it
+    if (auto n = obj.optional("description")) n->string();
+    if (auto n = obj.optional("gravity")) scene.settings.gravity = n->vec<N>();
+    if (auto n = obj.optional("timestep")) {
+      scene.timestep = n->number();
+      if (!(scene.timestep > 0.0)) n->fail("must be > 0 (got " + n->json().dump() + ")");
+    }
+    scene.settings.gyroscopic = obj.boolean_or("gyroscopic", true);
+    if (auto n = obj.optional("rotor_repair_interval")) {
+      const std::int64_t r = n->integer();
+      if (r < 1 || r > 1'000'000'000) n->fail("must be an integer >= 1 (got " + n->json().dump() + ")");
+      scene.settings.rotor_repair_interval = int(r);
+    }
+    const Node bodies = obj.required("bodies");
+    obj.finish();
+
+    std::set<std::string> names;
+    const std::vector<Node> list = bodies.array();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      scene.bodies.push_back(read_body<N>(list[i], int(i)));
+      const std::string& name = scene.bodies.back().def.name;
+      if (!names.insert(name).second) list[i].fail("duplicate body name \"" + name + "\"");
+    }
+    return scene;
+  });
+}
+
+template <int N>
+World<N> Scene<N>::make_world(const std::string& file) const {
+  World<N> world = with_file_context(file, "", [&] { return World<N>(settings); });
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    with_file_context(file, index_path("bodies", i), [&] { world.add_body(bodies[i].def); });
+  return world;
+}
+
+#define WEDGE_CLI_INSTANTIATE(N)                                              \
+  template Scene<N> load_scene<N>(const Json&, const std::string&);          \
+  template struct Scene<N>;
+WEDGE_CLI_INSTANTIATE(2)
+WEDGE_CLI_INSTANTIATE(3)
+WEDGE_CLI_INSTANTIATE(4)
+WEDGE_CLI_INSTANTIATE(5)
+WEDGE_CLI_INSTANTIATE(6)
+#undef WEDGE_CLI_INSTANTIATE
+
+}  // namespace wedge::cli

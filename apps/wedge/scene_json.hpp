@@ -1,0 +1,89 @@
+// Scene files (JSON) -> World<N> plus the per-body shape and material data the world does not hold yet.
+// The schema is in docs/scene-format.md. Everything is checked while loading: unknown keys, types,
+// sizes, ranges, finiteness, rotors, meshes (via the core's wedge::Error). Every problem comes out as a
+// Failure whose message starts with the file name and the JSON path: "scene.json: bodies[2].shape.
+// half_extents: expected 4 numbers, got 3".
+#pragma once
+
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "cli_error.hpp"
+#include "json_in.hpp"
+#include "wedge/body.hpp"
+#include "wedge/error.hpp"
+#include "wedge/mass.hpp"
+#include "wedge/shape.hpp"
+#include "wedge/world.hpp"
+
+namespace wedge::cli {
+
+inline constexpr int kMinDim = 2, kMaxDim = 6;
+inline constexpr double kDefaultTimestep = 1.0 / 120.0;
+
+// Contact material, stored and validated; used once contacts exist.
+struct Material {
+  double restitution = 0.0;       // [0, 1]
+  double friction = 0.5;          // static friction coefficient, >= 0
+  double kinetic_friction = 0.4;  // >= 0
+};
+
+template <int N>
+struct SceneBody {
+  BodyDef<N> def;  // mass, local_center and inertia filled from the shape and density
+  Shape<N> shape;
+  double density = 1.0;                     // kg/m^n; 0 for a halfspace (no mass properties)
+  std::optional<MassProperties<N>> mass;    // absent for a halfspace
+  Material material;
+};
+
+template <int N>
+struct Scene {
+  WorldSettings<N> settings;
+  double timestep = kDefaultTimestep;  // s
+  std::vector<SceneBody<N>> bodies;
+
+  // A world holding every body, in file order (throws Failure naming the file and body on error).
+  World<N> make_world(const std::string& file) const;
+};
+
+// The "dim" of a document, checked to be an integer in 2..6; throws Failure.
+int read_dim(const Json& doc, const std::string& file);
+
+// A shape object ({"type": ..}) at `node`; throws JsonError (or wedge::Error from the core, which the
+// callers wrap with the path).
+template <int N>
+Shape<N> read_shape(const Node& node);
+
+// Runs `what` and turns JsonError and wedge::Error into a Failure prefixed with the file name (and,
+// for wedge::Error, `path`).
+template <class F>
+decltype(auto) with_file_context(const std::string& file, const std::string& path, F&& what) {
+  try {
+    return std::forward<F>(what)();
+  } catch (const JsonError& e) {
+    throw Failure(file + ": " + e.what());
+  } catch (const Error& e) {
+    throw Failure(file + ": " + (path.empty() ? std::string() : path + ": ") + e.what());
+  }
+}
+
+template <int N>
+Scene<N> load_scene(const Json& doc, const std::string& file);
+
+// Calls f(std::integral_constant<int, N>{}) for the runtime dimension n in 2..6.
+template <class F>
+decltype(auto) with_dim(int n, F&& f) {
+  switch (n) {
+    case 2: return f(std::integral_constant<int, 2>{});
+    case 3: return f(std::integral_constant<int, 3>{});
+    case 4: return f(std::integral_constant<int, 4>{});
+    case 5: return f(std::integral_constant<int, 5>{});
+    default: return f(std::integral_constant<int, 6>{});
+  }
+}
+
+}  // namespace wedge::cli

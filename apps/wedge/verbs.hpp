@@ -1,0 +1,31 @@
+// The verbs of the `wedge` program. Each verb registers its subcommand and options with CLI11 and runs
+// after parsing; it returns an exit code or throws Failure (exit code 2).
+#pragma once
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace wedge::cli {
+
+// wedge inertia FILE.json
+struct InertiaOptions {
+  std::string file;
+};
+CLI::App* add_inertia_verb(CLI::App& app, InertiaOptions& options);
+int run_inertia(const InertiaOptions& options);
+
+// wedge simulate SCENE.json --steps N [--dt H] [--every K] [--out FILE] [--hash]
+// Numeric options are kept as text and checked by run_simulate, so that every message names the scene.
+struct SimulateOptions {
+  std::string scene;
+  std::string steps, dt, every;
+  std::string out;
+  bool hash = false;
+};
+CLI::App* add_simulate_verb(CLI::App& app, SimulateOptions& options);
+int run_simulate(const SimulateOptions& options);
+
+}  // namespace wedge::cli
