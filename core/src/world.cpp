@@ -122,11 +122,11 @@ void World<N>::integrate_velocities(double h) {
   for (Body<N>& b : bodies_) {
     if (!b.is_dynamic()) continue;
     b.velocity += h * (settings_.gravity + b.force * b.inv_mass);
-    b.angular_velocity.c += h * (b.world_inv_inertia() * b.torque.c);
-    if (settings_.gyroscopic) {
-      const Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
-      b.angular_velocity = rotate(b.rotor, gyroscopic_step<N>(b.inertia, wb, h));
-    }
+    // In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
+    Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
+    wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
+    if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h);
+    b.angular_velocity = rotate(b.rotor, wb);
     b.velocity *= 1.0 / (1.0 + h * b.linear_drag);
     b.angular_velocity *= 1.0 / (1.0 + h * b.angular_drag);
   }
