@@ -1,0 +1,410 @@
+// The `wedge` program, run as a user would: input files written to a temporary folder, the binary run
+// through the shell, stdout, stderr and the exit code checked.
+//
+// Tolerances: a box's mass properties are closed forms of a few products, so they match the formulas to
+// round-off (1e-12 relative). The projectile runs symplectic Euler with constant gravity, whose discrete
+// solution is exact: v_n = v0 + n h g, x_n = x0 + n h v0 + h^2 g n (n + 1) / 2; over 100 steps of numbers
+// of order 10 the accumulated round-off stays below 1e-12, so 1e-9 absolute separates it from any
+// wrong formula (the continuous x0 + v0 t + g t^2 / 2 differs by h^2 g n / 2 ~ 5e-2 at n = 100).
+#include <catch2/catch.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kWedge = WEDGE_BINARY_DIR "/apps/wedge/wedge";
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+  std::vector<json> lines() const {
+    std::vector<json> v;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) v.push_back(json::parse(line));
+    return v;
+  }
+};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A fresh temporary folder per test case, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    std::string templ = (fs::temp_directory_path() / "wedge_cli_test_XXXXXX").string();
+    REQUIRE(::mkdtemp(templ.data()) != nullptr);
+    path_ = templ;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  fs::path write(const std::string& name, const std::string& text) const {
+    const fs::path p = path_ / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+  // Runs `wedge ARGS` in this folder (so file names in messages are the short names given).
+  Result run(const std::string& args) const {
+    const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
+    const std::string cmd = "cd '" + path_.string() + "' && '" + kWedge + "' " + args + " >'" + out + "' 2>'" + err + "'";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_file(out);
+    r.err = read_file(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+  // The names in the folder (without the captured outputs).
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+bool close_rel(double a, double b, double rel) { return std::abs(a - b) <= rel * std::max(std::abs(a), std::abs(b)); }
+
+const char* kBox4 = R"({"dim": 4, "shape": {"type": "box", "half_extents": [0.55, 0.15, 1.25, 0.35]}, "density": 2.5})";
+
+const char* kProjectile3 = R"({"dim": 3, "gravity": [0.5, -9.81, 0.25], "timestep": 0.01,
+  "bodies": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "position": [1, 2, -3],
+              "velocity": [3, 12, -1], "mass": 0.5},
+             {"name": "box", "shape": {"type": "box", "half_extents": [0.3, 0.2, 0.1]},
+              "velocity": [0, 1, 0], "angular_velocity": [0.1, 5, 0.1]}]})";
+
+}  // namespace
+
+TEST_CASE("wedge --help lists the verbs; every verb has --help", "[cli]") {
+  TempDir dir;
+  const Result top = dir.run("--help");
+  CHECK(top.code == 0);
+  CHECK(top.out.find("inertia") != std::string::npos);
+  CHECK(top.out.find("simulate") != std::string::npos);
+  for (const char* verb : {"inertia", "simulate"}) {
+    const Result r = dir.run(std::string(verb) + " --help");
+    CHECK(r.code == 0);
+    CHECK(r.out.find(std::string("wedge ") + verb) != std::string::npos);
+  }
+  CHECK(dir.run("simulate --help").out.find("--steps") != std::string::npos);
+}
+
+TEST_CASE("wedge inertia of a 4D box: volume, mass, I_(ij) = m (a_i^2 + a_j^2) / 12, principal frame", "[cli]") {
+  TempDir dir;
+  dir.write("box.json", kBox4);
+  const Result r = dir.run("inertia box.json");
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());
+  const json j = json::parse(r.out);
+  const double a[4] = {1.1, 0.3, 2.5, 0.7};  // full side lengths
+  const double volume = a[0] * a[1] * a[2] * a[3], mass = 2.5 * volume;
+  CHECK(j.at("dim") == 4);
+  CHECK(close_rel(j.at("volume").get<double>(), volume, 1e-12));
+  CHECK(close_rel(j.at("mass").get<double>(), mass, 1e-12));
+  REQUIRE(j.at("center").size() == 4);
+  for (const auto& c : j.at("center")) CHECK(std::abs(c.get<double>()) < 1e-12);
+
+  const json& inertia = j.at("inertia");
+  REQUIRE(inertia.size() == 6);
+  int row = 0;
+  std::vector<double> expected;
+  for (int i = 0; i < 4; ++i)
+    for (int k = i + 1; k < 4; ++k, ++row) {
+      REQUIRE(inertia[row].size() == 6);
+      const double want = mass * (a[i] * a[i] + a[k] * a[k]) / 12.0;
+      expected.push_back(want);
+      for (int col = 0; col < 6; ++col) {
+        const double got = inertia[row][col].get<double>();
+        if (col == row)
+          CHECK(close_rel(got, want, 1e-12));
+        else
+          CHECK(std::abs(got) <= 1e-12 * want);
+      }
+    }
+
+  // Principal axes: an orthonormal n x n matrix; principal inertia diagonal with the same moments.
+  const json& axes = j.at("principal_axes");
+  REQUIRE(axes.size() == 4);
+  for (int p = 0; p < 4; ++p)
+    for (int q = 0; q < 4; ++q) {
+      double d = 0.0;
+      for (int r2 = 0; r2 < 4; ++r2) d += axes[r2][p].get<double>() * axes[r2][q].get<double>();
+      CHECK(std::abs(d - (p == q ? 1.0 : 0.0)) < 1e-12);
+    }
+  const json& principal = j.at("principal_inertia");
+  REQUIRE(principal.size() == 6);
+  std::vector<double> diagonal;
+  for (int p = 0; p < 6; ++p) {
+    REQUIRE(principal[p].size() == 6);
+    for (int q = 0; q < 6; ++q)
+      if (p != q) CHECK(principal[p][q].get<double>() == 0.0);
+    diagonal.push_back(principal[p][p].get<double>());
+  }
+  std::sort(diagonal.begin(), diagonal.end());
+  std::sort(expected.begin(), expected.end());
+  for (int p = 0; p < 6; ++p) CHECK(close_rel(diagonal[p], expected[p], 1e-12));
+}
+
+TEST_CASE("wedge inertia: the shipped tesseract and a mesh simplex", "[cli]") {
+  TempDir dir;
+  const Result r = dir.run("inertia '" WEDGE_SOURCE_DIR "/scenes/inertia_tesseract.json'");
+  REQUIRE(r.code == 0);
+  const json j = json::parse(r.out);
+  CHECK(close_rel(j.at("volume").get<double>(), 1.0, 1e-12));
+  CHECK(close_rel(j.at("inertia")[0][0].get<double>(), 1.0 / 6.0, 1e-12));
+
+  // The corner 3-simplex {0, e0, e1, e2}: volume 1/6, centre (1/4, 1/4, 1/4), with "mass" instead of a density.
+  dir.write("simplex.json", R"({"dim": 3, "mass": 3.0, "shape": {"type": "mesh",
+    "vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "cells": [[0,2,1],[0,1,3],[0,3,2],[1,2,3]]}})");
+  const Result s = dir.run("inertia simplex.json");
+  REQUIRE(s.code == 0);
+  const json k = json::parse(s.out);
+  CHECK(close_rel(k.at("volume").get<double>(), 1.0 / 6.0, 1e-12));
+  CHECK(close_rel(k.at("mass").get<double>(), 3.0, 1e-12));
+  for (const auto& c : k.at("center")) CHECK(close_rel(c.get<double>(), 0.25, 1e-12));
+}
+
+TEST_CASE("wedge simulate: a 3D projectile follows the discrete symplectic-Euler solution", "[cli]") {
+  TempDir dir;
+  dir.write("projectile.json", kProjectile3);
+  const Result r = dir.run("simulate projectile.json --steps 100");
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());
+  const std::vector<json> lines = r.lines();
+  REQUIRE(lines.size() == 101);
+  const double h = 0.01, g[3] = {0.5, -9.81, 0.25}, x0[3] = {1, 2, -3}, v0[3] = {3, 12, -1};
+  for (int n = 0; n <= 100; ++n) {
+    const json& line = lines[n];
+    CHECK(line.at("step") == n);
+    CHECK(std::abs(line.at("time").get<double>() - n * h) < 1e-12);
+    CHECK(line.at("energy").is_number());
+    CHECK(line.at("linear_momentum").size() == 3);
+    CHECK(line.at("angular_momentum").size() == 3);  // k = 3
+    REQUIRE(line.at("bodies").size() == 2);
+    const json& ball = line.at("bodies")[0];
+    CHECK(ball.at("name") == "ball");
+    CHECK(ball.at("rotor").size() == 4);  // 2^(n-1)
+    CHECK(ball.at("angular_velocity").size() == 3);
+    CHECK(ball.at("angular_momentum").size() == 3);
+    for (int i = 0; i < 3; ++i) {
+      const double x = x0[i] + v0[i] * n * h + g[i] * h * h * n * (n + 1) / 2.0;
+      CHECK(std::abs(ball.at("position")[i].get<double>() - x) < 1e-9);
+      CHECK(std::abs(ball.at("velocity")[i].get<double>() - (v0[i] + g[i] * n * h)) < 1e-9);
+      // Momentum of both bodies: p = sum m (v0 + n h g); the box has v0 = (0, 1, 0).
+      const json& box = line.at("bodies")[1];
+      const double m_box = 0.6 * 0.4 * 0.2;  // density 1: mass = volume
+      const double p = 0.5 * ball.at("velocity")[i].get<double>() + m_box * box.at("velocity")[i].get<double>();
+      CHECK(std::abs(line.at("linear_momentum")[i].get<double>() - p) < 1e-12);
+    }
+  }
+  // Same run, same bits.
+  CHECK(dir.run("simulate projectile.json --steps 100").out == r.out);
+}
+
+TEST_CASE("wedge simulate: --every, --out, --hash and --dt", "[cli]") {
+  TempDir dir;
+  dir.write("projectile.json", kProjectile3);
+
+  SECTION("--every K writes step 0 and the multiples of K") {
+    const Result r = dir.run("simulate projectile.json --steps 10 --every 3");
+    REQUIRE(r.code == 0);
+    const std::vector<json> lines = r.lines();
+    REQUIRE(lines.size() == 4);
+    for (int i = 0; i < 4; ++i) CHECK(lines[i].at("step") == 3 * i);
+    CHECK(dir.run("simulate projectile.json --steps 12 --every 4").lines().size() == 4);
+    CHECK(dir.run("simulate projectile.json --steps 0").lines().size() == 1);
+  }
+  SECTION("--out writes the file and nothing to stdout") {
+    const Result r = dir.run("simulate projectile.json --steps 5 --out run.jsonl");
+    REQUIRE(r.code == 0);
+    CHECK(r.out.empty());
+    const std::string text = read_file(dir.path() / "run.jsonl");
+    CHECK(std::count(text.begin(), text.end(), '\n') == 6);
+    CHECK(text == dir.run("simulate projectile.json --steps 5").out);
+    CHECK(dir.listing() == std::vector<std::string>{"projectile.json", "run.jsonl"});  // no temporary left
+  }
+  SECTION("--hash appends the final state hash, the same on every run") {
+    const Result r = dir.run("simulate projectile.json --steps 20 --hash");
+    REQUIRE(r.code == 0);
+    const std::vector<json> lines = r.lines();
+    REQUIRE(lines.size() == 22);
+    const std::string hash = lines.back().at("state_hash");
+    CHECK(hash.size() == 16);
+    CHECK(hash.find_first_not_of("0123456789abcdef") == std::string::npos);
+    CHECK(dir.run("simulate projectile.json --steps 20 --hash").out == r.out);
+    CHECK(dir.run("simulate projectile.json --steps 21 --hash").lines().back().at("state_hash") != hash);
+  }
+  SECTION("--dt overrides the scene's timestep") {
+    const std::vector<json> lines = dir.run("simulate projectile.json --steps 4 --dt 0.025").lines();
+    REQUIRE(lines.size() == 5);
+    CHECK(std::abs(lines[4].at("time").get<double>() - 0.1) < 1e-15);
+  }
+}
+
+TEST_CASE("wedge simulate: every shipped scene runs", "[cli]") {
+  TempDir dir;
+  int count = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(WEDGE_SOURCE_DIR) / "scenes")) {
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() != ".json" || name.rfind("inertia_", 0) == 0) continue;
+    INFO(name);
+    const Result r = dir.run("simulate '" + e.path().string() + "' --steps 10");
+    CHECK(r.code == 0);
+    CHECK(r.err.empty());
+    CHECK(r.lines().size() == 11);
+    CHECK(r.out.find("null") == std::string::npos);
+    ++count;
+  }
+  CHECK(count >= 7);
+}
+
+TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli]") {
+  struct Case {
+    const char* what;
+    const char* scene;      // nullptr: no file written
+    const char* args;       // after "simulate bad.json"
+    const char* message;    // expected in stderr besides the file name
+  };
+  const Case cases[] = {
+      {"missing file", nullptr, "--steps 1", "cannot open"},
+      {"malformed JSON", R"({"dim": 3, "bodies": [)", "--steps 1", "line 1, column"},
+      {"top level not an object", "[1, 2]", "--steps 1", "object"},
+      {"wrong array size", R"({"dim": 4, "bodies": [{"shape": {"type": "box", "half_extents": [1, 1, 1]}}]})",
+       "--steps 1", "bodies[0].shape.half_extents: expected 4 numbers, got 3"},
+      {"wrong vector size", R"({"dim": 3, "gravity": [0, -9.81], "bodies": []})", "--steps 1", "gravity"},
+      {"wrong bivector size", R"({"dim": 4, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "angular_velocity": [1, 2, 3]}]})",
+       "--steps 1", "bodies[0].angular_velocity: expected 6 numbers, got 3"},
+      {"dim too large", R"({"dim": 7, "bodies": []})", "--steps 1", "dim"},
+      {"dim too small", R"({"dim": 1, "bodies": []})", "--steps 1", "dim"},
+      {"dim missing", R"({"bodies": []})", "--steps 1", "dim"},
+      {"unknown top-level key", R"({"dim": 3, "bodies": [], "gravty": [0, 0, 0]})", "--steps 1", "gravty"},
+      {"unknown body key", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "colour": "red"}]})",
+       "--steps 1", "bodies[0].colour"},
+      {"unknown shape key", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1, "r": 2}}]})",
+       "--steps 1", "bodies[0].shape.r"},
+      {"unknown shape type", R"({"dim": 3, "bodies": [{"shape": {"type": "torus"}}]})", "--steps 1", "torus"},
+      {"wrong type", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": "1"}}]})", "--steps 1",
+       "bodies[0].shape.radius: expected a number"},
+      {"wrong type for a flag", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "static": 1}]})",
+       "--steps 1", "bodies[0].static"},
+      {"open mesh", R"({"dim": 3, "bodies": [{"shape": {"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]],
+         "cells": [[0,2,1],[0,1,3],[0,3,2]]}}]})", "--steps 1", "bodies[0].shape"},
+      {"inside-out mesh", R"({"dim": 3, "bodies": [{"shape": {"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]],
+         "cells": [[0,1,2],[0,3,1],[0,2,3],[1,3,2]]}}]})", "--steps 1", "bodies[0].shape"},
+      {"degenerate mesh", R"({"dim": 3, "bodies": [{"shape": {"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]],
+         "cells": [[0,2,1],[0,1,3],[0,3,2],[1,2,3]]}}]})", "--steps 1", "bodies[0].shape"},
+      {"mesh index out of range", R"({"dim": 3, "bodies": [{"shape": {"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]],
+         "cells": [[0,2,1],[0,1,3],[0,3,2],[1,2,7]]}}]})", "--steps 1", "bodies[0].shape.cells[3][2]"},
+      {"flat polytope", R"({"dim": 3, "bodies": [{"shape": {"type": "polytope", "vertices": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]}}]})",
+       "--steps 1", "bodies[0].shape"},
+      {"zero density", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "density": 0}]})", "--steps 1",
+       "bodies[0].density"},
+      {"negative density", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "density": -2}]})",
+       "--steps 1", "bodies[0].density"},
+      {"zero mass", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "mass": 0}]})", "--steps 1",
+       "bodies[0].mass"},
+      {"negative size", R"({"dim": 3, "bodies": [{"shape": {"type": "box", "half_extents": [1, -1, 1]}}]})",
+       "--steps 1", "bodies[0].shape"},
+      {"non-finite number", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1e999}}]})", "--steps 1",
+       "overflow"},
+      {"not a rotor", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "rotor": [1, 0.1, 0, 0]}]})",
+       "--steps 1", "bodies[0].rotor"},
+      {"restitution above 1", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "restitution": 1.5}]})",
+       "--steps 1", "bodies[0].restitution"},
+      {"negative friction", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "friction": -0.1}]})",
+       "--steps 1", "bodies[0].friction"},
+      {"dynamic halfspace", R"({"dim": 3, "bodies": [{"shape": {"type": "halfspace", "normal": [0, 1, 0], "offset": 0}}]})",
+       "--steps 1", "static"},
+      {"static and kinematic", R"({"dim": 3, "bodies": [{"shape": {"type": "sphere", "radius": 1}, "static": true, "kinematic": true}]})",
+       "--steps 1", "bodies[0]"},
+      {"duplicate names", R"({"dim": 2, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}},
+         {"name": "a", "shape": {"type": "sphere", "radius": 1}}]})", "--steps 1", "bodies[1]"},
+      {"timestep not positive", R"({"dim": 2, "timestep": 0, "bodies": []})", "--steps 1", "timestep"},
+      {"steps negative", R"({"dim": 2, "bodies": []})", "--steps -1", "--steps"},
+      {"steps missing", R"({"dim": 2, "bodies": []})", "", "--steps"},
+      {"steps not a number", R"({"dim": 2, "bodies": []})", "--steps ten", "--steps"},
+      {"dt zero", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 0", "--dt"},
+      {"dt negative", R"({"dim": 2, "bodies": []})", "--steps 1 --dt=-0.01", "--dt"},
+      {"every zero", R"({"dim": 2, "bodies": []})", "--steps 1 --every 0", "--every"},
+      {"simulation blows up", R"({"dim": 3, "gravity": [0, -9.81, 0], "bodies": [{"shape": {"type": "sphere", "radius": 1}}]})",
+       "--steps 5 --dt 1e300", "non-finite"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    TempDir dir;
+    if (c.scene) dir.write("bad.json", c.scene);
+    for (const bool to_file : {false, true}) {
+      const Result r = dir.run(std::string("simulate bad.json ") + c.args + (to_file ? " --out out.jsonl" : ""));
+      INFO(r.err);
+      CHECK(r.code == 2);
+      CHECK(r.out.empty());
+      CHECK(r.err.find("bad.json") != std::string::npos);
+      CHECK(r.err.find(c.message) != std::string::npos);
+      CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+      CHECK(!fs::exists(dir.path() / "out.jsonl"));
+      CHECK(dir.listing().size() == (c.scene ? 1u : 0u));  // no temporary files left behind
+    }
+  }
+}
+
+TEST_CASE("wedge inertia: bad input exits with 2 and names the file", "[cli]") {
+  TempDir dir;
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"dim": 4, "shape": {"type": "box", "half_extents": [1, 1]}})", "shape.half_extents"},
+      {R"({"dim": 4, "shape": {"type": "sphere", "radius": 1}, "density": -1})", "density"},
+      {R"({"dim": 4, "shape": {"type": "sphere", "radius": 1}, "extra": 1})", "extra"},
+      {R"({"dim": 3, "shape": {"type": "halfspace", "normal": [0, 1, 0], "offset": 0}})", "shape"},
+      {R"({"dim": 9, "shape": {"type": "sphere", "radius": 1}})", "dim"},
+      {R"({"dim": 4, "shape": )", "malformed"},
+  };
+  for (const auto& [scene, message] : cases) {
+    INFO(scene);
+    dir.write("in.json", scene);
+    const Result r = dir.run("inertia in.json");
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("in.json") != std::string::npos);
+    CHECK(r.err.find(message) != std::string::npos);
+  }
+  const Result missing = dir.run("inertia missing.json");
+  CHECK(missing.code == 2);
+  CHECK(missing.err.find("missing.json") != std::string::npos);
+}
+
+TEST_CASE("wedge: usage errors exit with 2", "[cli]") {
+  TempDir dir;
+  dir.write("projectile.json", kProjectile3);
+  for (const char* args : {"", "frobnicate", "simulate projectile.json --steps 1 --bogus", "simulate", "inertia",
+                           "simulate a.json b.json --steps 1", "--bogus"}) {
+    INFO(args);
+    const Result r = dir.run(args);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    CHECK(!r.err.empty());
+  }
+}
