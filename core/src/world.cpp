@@ -58,11 +58,23 @@ Body<N> make_body(const BodyDef<N>& def) {
 }
 
 template <int N>
-Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h) {
-  const Bivector<N> iw = Bivector<N>::from(inertia * w.c);
-  const BivMat<N> jac = inertia - h * (commutator_matrix(w) * inertia - commutator_matrix(iw));
-  const Bivector<N> rhs = commutator(w, iw) * h;
-  return w + Bivector<N>::from(jac.partialPivLu().solve(rhs.c));
+Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
+  const bool euler = method == GyroscopicMethod::ImplicitEuler;
+  const double t = euler ? 1.0 : 0.5;
+  const int iterations = euler ? 1 : 2;
+  Bivector<N> w2 = w;
+  for (int i = 0; i < iterations; ++i) {
+    const Bivector<N> m = euler ? w2 : (w + w2) * 0.5;
+    const Bivector<N> im = Bivector<N>::from(inertia * m.c);
+    const Bivector<N> g = Bivector<N>::from(inertia * (w2 - w).c) - commutator(m, im) * h;
+    const BivMat<N> jac = inertia - (t * h) * (commutator_matrix(m) * inertia - commutator_matrix(im));
+    w2 -= Bivector<N>::from(jac.partialPivLu().solve(g.c));
+  }
+  if (!euler) {
+    const double e0 = w.c.dot(inertia * w.c), e1 = w2.c.dot(inertia * w2.c);
+    if (e1 > e0) w2 *= std::sqrt(e0 / e1);
+  }
+  return w2;
 }
 
 template <int N>
@@ -125,7 +137,7 @@ void World<N>::integrate_velocities(double h) {
     // In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
     Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
     wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
-    if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h);
+    if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, settings_.gyroscopic_method);
     b.angular_velocity = rotate(b.rotor, wb);
     b.velocity *= 1.0 / (1.0 + h * b.linear_drag);
     b.angular_velocity *= 1.0 / (1.0 + h * b.angular_drag);
@@ -203,7 +215,7 @@ std::uint64_t World<N>::state_hash() const {
 
 #define WEDGE_INSTANTIATE(N)                                                                    \
   template Body<N> make_body<N>(const BodyDef<N>&);                                            \
-  template Bivector<N> gyroscopic_step<N>(const BivMat<N>&, const Bivector<N>&, double); \
+  template Bivector<N> gyroscopic_step<N>(const BivMat<N>&, const Bivector<N>&, double, GyroscopicMethod); \
   template class World<N>;
 WEDGE_INSTANTIATE(2)
 WEDGE_INSTANTIATE(3)

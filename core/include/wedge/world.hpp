@@ -16,10 +16,21 @@
 
 namespace wedge {
 
+// How the gyroscopic term of Euler's equation is integrated (both implicit, by Newton steps).
+enum class GyroscopicMethod : std::uint8_t {
+  // Implicit midpoint, two Newton iterations: conserves energy and |L| of a free body to round-off at
+  // game time steps (the default).
+  ImplicitMidpoint,
+  // Implicit Euler, one Newton step: the paper's and Catto's choice; unconditionally stable but it
+  // dissipates energy at a rate proportional to h (e.g. -17% in 30 s for a 3 rad/s cuboid at 1/120 s).
+  ImplicitEuler,
+};
+
 template <int N>
 struct WorldSettings {
   Vec<N> gravity = Vec<N>::Zero();  // m/s^2, any direction in R^N
   bool gyroscopic = true;           // integrate the w x I'w term (off only for experiments)
+  GyroscopicMethod gyroscopic_method = GyroscopicMethod::ImplicitMidpoint;
   int rotor_repair_interval = 1;    // steps between rotor repairs by factorisation (>= 1)
 };
 
@@ -73,10 +84,13 @@ class World {
   double time_ = 0.0;
 };
 
-// One implicit Euler step of the torque-free Euler equation I dw/dt - w x I w = 0 in the body frame,
-// linearised once (Catto 2015, generalised with the bivector commutator [a]x b = a x b):
-//   J = I - h ([w]x I - [I w]x),   w' = w + J^-1 (h w x I w).
+// One implicit step of the torque-free Euler equation I dw/dt - w x I w = 0 in the body frame, solved
+// by Newton's method from w (Catto 2015, generalised with the bivector commutator [a]x b = a x b).
+// With m = (1-t) w + t w' (t = 1: implicit Euler, t = 1/2: implicit midpoint) each iteration solves
+//   g(w') = I (w' - w) - h m x I m = 0,   J = I - t h ([m]x I - [I m]x),   w' <- w' - J^-1 g(w').
+// The midpoint result never gains energy: if unconverged iterations raised w'.I w', it is scaled back.
 template <int N>
-Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w_body, double h);
+Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w_body, double h,
+                            GyroscopicMethod method = GyroscopicMethod::ImplicitMidpoint);
 
 }  // namespace wedge
