@@ -147,4 +147,50 @@ struct Terms {
   static constexpr auto table = make();
 };
 
+// The rotation matrix of a rotor as a quadratic form: M(i, j) = <R e_j ~R>_i = sum coef * R_a R_b over
+// pairs a <= b of even blades. Derived at compile time from the blade products, so to_matrix costs one
+// multiply-add per term instead of N sandwiches.
+struct QuadTerm {
+  std::uint16_t a, b, i, j;
+  std::int8_t coef;
+};
+
+template <int N>
+struct SandwichMatrixTerms {
+  using Bl = Blades<N>;
+  static constexpr int kE = Bl::kEven;
+  // coef(i, j, a, b) for ordered pairs, folded onto a <= b.
+  static constexpr int folded(int i, int j, int a, int b) {
+    constexpr auto even = Bl::template order<Set::Even>();
+    auto raw = [&](int x, int y) {
+      const unsigned ea = even[x], eb = even[y], ej = 1u << j;
+      const unsigned m1 = ea ^ ej, m2 = m1 ^ eb;
+      if (m2 != (1u << i)) return 0;
+      return blade_product_sign(ea, ej) * blade_product_sign(m1, eb) * reverse_sign(grade_of(eb));
+    };
+    return a == b ? raw(a, a) : raw(a, b) + raw(b, a);
+  }
+  static constexpr int count() {
+    int n = 0;
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        for (int a = 0; a < kE; ++a)
+          for (int b = a; b < kE; ++b) n += folded(i, j, a, b) != 0 ? 1 : 0;
+    return n;
+  }
+  static constexpr std::array<QuadTerm, count()> make() {
+    std::array<QuadTerm, count()> t{};
+    int n = 0;
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+        for (int a = 0; a < kE; ++a)
+          for (int b = a; b < kE; ++b)
+            if (const int c = folded(i, j, a, b); c != 0)
+              t[n++] = QuadTerm{std::uint16_t(a), std::uint16_t(b), std::uint16_t(i), std::uint16_t(j),
+                                std::int8_t(c)};
+    return t;
+  }
+  static constexpr auto table = make();
+};
+
 }  // namespace wedge::ga

@@ -236,26 +236,24 @@ Bivector<N> rotate_inverse(const Rotor<N>& r, const Bivector<N>& b) {
 }
 
 // ---------------------------------------------------------------- matrix forms
-// The N x N rotation matrix of R: column i is R e_i ~R.
+// The N x N rotation matrix of R: column j is R e_j ~R, evaluated as the compile-time quadratic form of
+// blades.hpp (SandwichMatrixTerms). Unrolled up to 4D; a plain loop beyond, to keep compile times short.
 template <int N>
 Mat<N> to_matrix(const Rotor<N>& r) {
-  using namespace ga;
-  using T1 = Terms<N, Set::Even, Set::Vector, Set::Odd, Product::Geometric>;
-  using T2 = Terms<N, Set::Odd, Set::Even, Set::Vector, Product::Geometric>;
-  const Rotor<N> rr = reverse(r);
-  Mat<N> m;
-  [&]<std::size_t... J>(std::index_sequence<J...>) {
-    (
-        [&] {
-          Eigen::Matrix<double, kEven<N>, 1> rx = Eigen::Matrix<double, kEven<N>, 1>::Zero();
-          ga::detail::apply_terms_with_basis<T1::table, int(J)>(r, rx,
-                                                                std::make_index_sequence<T1::table.size()>{});
-          Vec<N> col = Vec<N>::Zero();
-          ga::detail::product<T2>(rx, rr, col);
-          m.col(J) = col;
-        }(),
-        ...);
-  }(std::make_index_sequence<N>{});
+  using T = ga::SandwichMatrixTerms<N>;
+  Mat<N> m = Mat<N>::Zero();
+  if constexpr (N <= 4) {
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      (
+          [&] {
+            constexpr ga::QuadTerm t = T::table[I];
+            m(t.i, t.j) += double(t.coef) * (r[t.a] * r[t.b]);
+          }(),
+          ...);
+    }(std::make_index_sequence<T::table.size()>{});
+  } else {
+    for (const ga::QuadTerm& t : T::table) m(t.i, t.j) += double(t.coef) * (r[t.a] * r[t.b]);
+  }
   return m;
 }
 
