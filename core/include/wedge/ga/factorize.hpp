@@ -5,7 +5,7 @@
 // Instead, R is rebuilt as a product of unit vectors, which is always an exact rotor. Constructively
 // (Cartan-Dieudonne): for i = 0..N-2, take b = the image of e_i under what is left of R, made orthogonal
 // to e_0..e_(i-1) and unit; the simple rotor S_i = b m, m = unit(e_i + b), turns e_i onto b and fixes
-// e_0..e_(i-1); peel it off. What remains fixes N-1 axes, so it is +-1, and R = +-S_0 S_1 .. S_(N-2).
+// e_0..e_(i-1) (turns beyond 120 degrees go in two legs within the same plane); peel it off. What remains fixes N-1 axes, so it is +-1, and R = +-S_0 S_1 .. S_(N-2).
 #pragma once
 
 #include "wedge/ga/products.hpp"
@@ -40,7 +40,7 @@ RotorFactors<N> factorize_matrix(Mat<N> m) {
     if (!(len > 0.0)) continue;  // not a rotation; nothing sensible to peel
     b /= len;
     const Vec<N> a = Vec<N>::Unit(i);
-    // Turn a onto b through the bisector; for b near -a go via an axis c orthogonal to both halves.
+    // Turn a onto b through the bisector (for b near -a in two legs, below).
     auto peel = [&](const Vec<N>& from, const Vec<N>& to) {
       const Vec<N> mid = (from + to).normalized();
       f.v[f.count++] = to;
@@ -51,10 +51,17 @@ RotorFactors<N> factorize_matrix(Mat<N> m) {
     if (a.dot(b) > -0.5) {
       peel(a, b);
     } else {
-      int k = i + 1;
-      for (int j = i + 2; j < N; ++j)
-        if (std::abs(b[j]) < std::abs(b[k])) k = j;
-      const Vec<N> c = Vec<N>::Unit(k);
+      // Via c, the unit part of b orthogonal to a: both legs stay in the plane of a and b, so a rotation
+      // confined to a subspace is factorised inside it. Only for b = -a (no plane) is an axis chosen.
+      Vec<N> c = b - a.dot(b) * a;
+      if (c.norm() > 1e-8) {
+        c.normalize();
+      } else {
+        int k = i + 1;
+        for (int j = i + 2; j < N; ++j)
+          if (std::abs(b[j]) < std::abs(b[k])) k = j;
+        c = Vec<N>::Unit(k);
+      }
       peel(c, b);  // S(a->b) = S(c->b) S(a->c): the left factor is peeled first
       peel(a, c);
     }
