@@ -143,6 +143,15 @@ Scene<N> load_scene(const Json& doc, const std::string& file) {
       if (!(scene.timestep > 0.0)) n->fail("must be > 0 (got " + n->json().dump() + ")");
     }
     scene.settings.gyroscopic = obj.boolean_or("gyroscopic", true);
+    if (auto n = obj.optional("gyroscopic_method")) {
+      const std::string m = n->string();
+      if (m == "midpoint")
+        scene.settings.gyroscopic_method = GyroscopicMethod::ImplicitMidpoint;
+      else if (m == "euler")
+        scene.settings.gyroscopic_method = GyroscopicMethod::ImplicitEuler;
+      else
+        n->fail("must be \"midpoint\" or \"euler\" (got \"" + m + "\")");
+    }
     if (auto n = obj.optional("rotor_repair_interval")) {
       const std::int64_t r = n->integer();
       if (r < 1 || r > 1'000'000'000) n->fail("must be an integer >= 1 (got " + n->json().dump() + ")");
