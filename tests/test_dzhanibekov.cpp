@@ -14,8 +14,10 @@
 //    measured 1.75%), the main component never changes sign.
 //  * 4D (c), angular velocity inside the 3D subspace yzw: the xy, xz, xw components stay exactly 0 at every
 //    step and the yz rotation flips like the 3D one (RK4 flip times to 0.05 s).
-//  * 4D, xyz subspace and pure xy rotation: exactly invariant with rotor repair off; with repair on, the
-//    repair leaks round-off out of the subspace (documented in docs/dzhanibekov.md, not asserted here).
+//  * 4D (c'), angular velocity inside the xyz subspace, and (b), the pure xy rotation: exactly invariant,
+//    with rotor repair off and with it on (every step; since 4818c4f the repair keeps a rotation confined
+//    to a subspace exactly inside it, before that it leaked round-off into w that grew to O(1)). (c') flips
+//    like 3D (RK4 flip times to 0.05 s); (b) never moves off the pure xy rotation.
 //  * 4D (a): the dual plane zw starts at exactly 0 and picks up rotation of the order of the perturbations.
 //  * 4D (d): a perturbation out of the subspace of (c) grows to O(1) (yz is intermediate in xyz as well).
 // Runtime ~2.5 s in Release.
@@ -206,10 +208,11 @@ TEST_CASE("4D case (c): angular velocity in a 3D subspace stays in it exactly an
   check_conserved<4>(s, 1e-8);
 }
 
-TEST_CASE("4D: without rotor repair, the xyz subspace and the pure xy rotation are exactly invariant", "[dzhanibekov]") {
+TEST_CASE("4D: the xyz subspace (c') and the pure xy rotation (b) are exactly invariant, with or without rotor repair", "[dzhanibekov]") {
   wedge::WorldSettings<4> no_repair;
   no_repair.rotor_repair_interval = 1 << 30;
-  SECTION("xyz subspace (case c')") {
+  const wedge::WorldSettings<4> repair;  // World's default: repair every step
+  SECTION("xyz subspace (case c'), no repair") {
     const auto s = dz::simulate<4>(dz::case_4d_c_xyz(), 5e-4, 15.0, 1, no_repair);
     bool exact = true;
     for (const auto& x : s)
@@ -217,14 +220,34 @@ TEST_CASE("4D: without rotor repair, the xyz subspace and the pure xy rotation a
     CHECK(exact);
     CHECK(sign_changes<4>(s, index<4>(1, 2)).size() >= 4);
   }
-  SECTION("pure xy rotation (case b) is a fixed point") {
-    const auto s = dz::simulate<4>(dz::case_4d_b(), 5e-4, 15.0, 1, no_repair);
+  SECTION("xyz subspace (case c'), repair every step: exact, and flips like 3D") {
+    // Before 4818c4f the repair leaked round-off into xw, yw, zw here, and it grew to O(1) in ~9 s.
+    const dz::Case<4> c = dz::case_4d_c_xyz();
+    const int yz = index<4>(1, 2);
+    const double h = 1e-4, duration = 30.0;
+    const auto s = dz::simulate<4>(c, h, duration, 1, repair);
     bool exact = true;
     for (const auto& x : s)
-      for (int k = 1; k < 6; ++k) exact = exact && x.w_body[k] == 0.0;
+      for (int i = 0; i < 3; ++i) exact = exact && x.w_body[index<4>(i, 3)] == 0.0;
     CHECK(exact);
-    // Only the magnitude moves, by the round-off of the sandwich products (4e-12 relative in 30000 steps).
-    CHECK(s.back().w_body[index<4>(0, 1)] == Approx(dz::kSpin).epsilon(1e-9));
+    const auto flips = sign_changes<4>(s, yz);
+    const auto reference = reference_sign_changes<4>(c, h, duration, yz);
+    REQUIRE(flips.size() >= 8);
+    REQUIRE(flips.size() == reference.size());
+    for (std::size_t i = 0; i < flips.size(); ++i) CHECK(std::abs(flips[i] - reference[i]) < 0.05);
+    check_conserved<4>(s, 1e-8);
+  }
+  for (const bool with_repair : {false, true}) {
+    DYNAMIC_SECTION("pure xy rotation (case b) is a fixed point, " << (with_repair ? "repair every step" : "no repair")) {
+      // With repair, before 4818c4f, round-off reached xw and yw and the xy rotation flipped after ~12 s.
+      const auto s = dz::simulate<4>(dz::case_4d_b(), 5e-4, 15.0, 1, with_repair ? repair : no_repair);
+      bool exact = true;
+      for (const auto& x : s)
+        for (int k = 1; k < 6; ++k) exact = exact && x.w_body[k] == 0.0;
+      CHECK(exact);
+      // Only the magnitude moves, by the round-off of the sandwich products (4e-12 relative in 30000 steps).
+      CHECK(s.back().w_body[index<4>(0, 1)] == Approx(dz::kSpin).epsilon(1e-9));
+    }
   }
 }
 

@@ -101,8 +101,9 @@ inline Case<4> case_4d_a() {
 }
 // (b) (a) without the perturbations: the pure xy rotation, read literally. In exact arithmetic this is a
 // relative equilibrium (nothing happens), but xy is the intermediate plane of the xyw subspace, so any
-// round-off that reaches xw or yw grows like exp(2.7 t). In World it does reach them (from the rotor
-// repair), and the motion of (a) develops after ~10 s. See docs/dzhanibekov.md.
+// round-off that reaches xw or yw grows like exp(2.7 t). In World none reaches them: every other component
+// stays exactly 0, with or without rotor repair (tested). Before 4818c4f the repair leaked round-off into
+// xw and yw and the motion of (a) developed after ~12 s. See docs/dzhanibekov.md.
 inline Case<4> case_4d_b() {
   return {"4d_b", "(b) 4D cuboid: pure xy rotation (perturbations removed)", kCuboid4, 1.0,
           bivector<4>({{0, 1, kSpin}})};
@@ -121,10 +122,10 @@ inline Case<4> case_4d_d() {
           bivector<4>({{1, 2, kSpin}, {1, 3, kPerturb}, {2, 3, kPerturb}, {0, 1, kPerturb}, {0, 2, kPerturb},
                        {0, 3, kPerturb}})};
 }
-// Supplement to (c): the same yz spin in the xyz subspace (c = w), perturbed inside xyz. Mathematically
-// also exactly 3D, but the rotor repair leaks round-off (1e-16) into xw, yw, zw, and since yz is
-// intermediate in yzw too, the leak grows to O(1) within ~8 s. Plotted to show the 3D reduction is
-// numerically fragile; with --repair-interval large it stays exactly 3D.
+// Supplement to (c): the same yz spin in the xyz subspace (c = w), perturbed inside xyz. Also exactly 3D:
+// xw, yw, zw stay exactly 0 in World, with or without rotor repair (tested), and yz flips as in 3D. Before
+// 4818c4f the repair leaked round-off (1e-16) into xw, yw, zw, and since yz is intermediate in yzw too, the
+// leak grew to O(1) within ~9 s.
 inline Case<4> case_4d_c_xyz() {
   return {"4d_c_xyz", "(c') 4D cuboid: yz rotation in the xyz subspace, perturbation inside xyz", kCuboid4, 1.0,
           bivector<4>({{1, 2, kSpin}, {0, 1, kPerturb}, {0, 2, kPerturb}})};
