@@ -19,10 +19,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 AXES = "xyzw"
 TITLES = {
     "4d_a": "(a) 4D cuboid (1.1, 0.3, 2.5, 0.7): xy spin 5 rad/s, perturbations 0.05 in xz, xw, yz, yw",
-    "4d_b": "(b) as (a) with the perturbations removed: pure xy spin (round-off seeds the instability)",
+    "4d_b": "(b) as (a) with the perturbations removed: pure xy spin (a relative equilibrium: nothing moves)",
     "4d_c": "(c) yz spin 5 rad/s, intermediate plane of the yzw subspace; perturbations 0.05 in yw, zw",
     "4d_d": "(d) as (c), plus perturbations 0.05 out of the subspace (xy, xz, xw)",
-    "4d_c_xyz": "(c') yz spin in the xyz subspace instead (perturbations 0.05 in xy, xz): round-off leaks out",
+    "4d_c_xyz": "(c') yz spin in the xyz subspace instead (perturbations 0.05 in xy, xz): stays in xyz",
     "3d_flip": "3D box (1, 2, 3): spin 5 rad/s in the intermediate plane xz, perturbations 0.005 in xy, yz",
 }
 FLOOR = 1e-17  # exact zeros are drawn here in the log panel
