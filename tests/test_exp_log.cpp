@@ -7,17 +7,11 @@
 
 #include "wedge/ga/exp_log.hpp"
 
+#include "test_util.hpp"
+
 using namespace wedge;
 
 namespace {
-
-template <int N>
-Bivector<N> random_bivector(std::mt19937_64& rng, double scale) {
-  std::normal_distribution<double> nd;
-  Bivector<N> b;
-  for (int i = 0; i < kBiv<N>; ++i) b[i] = scale * nd(rng);
-  return b;
-}
 
 // exp by the power series with scaling and squaring, in the full algebra: an oracle that knows
 // nothing of planes or closed forms.

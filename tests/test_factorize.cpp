@@ -5,17 +5,11 @@
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
 
+#include "test_util.hpp"
+
 using namespace wedge;
 
 namespace {
-
-template <int N>
-Bivector<N> random_bivector(std::mt19937_64& rng, double scale) {
-  std::normal_distribution<double> nd;
-  Bivector<N> b;
-  for (int i = 0; i < kBiv<N>; ++i) b[i] = scale * nd(rng);
-  return b;
-}
 
 // How far an even element is from being a rotor: |R ~R - 1| and the orthogonality defect of x -> R x ~R.
 template <int N>

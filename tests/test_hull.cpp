@@ -17,6 +17,7 @@
 
 #include "wedge/error.hpp"
 #include "wedge/hull.hpp"
+#include "test_util.hpp"
 
 namespace {
 
@@ -25,11 +26,6 @@ using wedge::Mat;
 using wedge::SimplexMesh;
 using wedge::Vec;
 
-using D2 = std::integral_constant<int, 2>;
-using D3 = std::integral_constant<int, 3>;
-using D4 = std::integral_constant<int, 4>;
-using D5 = std::integral_constant<int, 5>;
-using D6 = std::integral_constant<int, 6>;
 
 double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
 

@@ -37,6 +37,7 @@
 #include "wedge/mass.hpp"
 #include "wedge/mesh.hpp"
 #include "wedge/shape.hpp"
+#include "test_util.hpp"
 
 namespace {
 
@@ -48,11 +49,6 @@ using wedge::Shape;
 using wedge::SimplexMesh;
 using wedge::Vec;
 
-using D2 = std::integral_constant<int, 2>;
-using D3 = std::integral_constant<int, 3>;
-using D4 = std::integral_constant<int, 4>;
-using D5 = std::integral_constant<int, 5>;
-using D6 = std::integral_constant<int, 6>;
 
 constexpr double kExact = 1e-12;
 constexpr double kPi = std::numbers::pi;

@@ -12,6 +12,7 @@
 
 #include "wedge/error.hpp"
 #include "wedge/mesh.hpp"
+#include "test_util.hpp"
 
 namespace {
 
@@ -20,11 +21,6 @@ using wedge::ProductFactor;
 using wedge::SimplexMesh;
 using wedge::Vec;
 
-using D2 = std::integral_constant<int, 2>;
-using D3 = std::integral_constant<int, 3>;
-using D4 = std::integral_constant<int, 4>;
-using D5 = std::integral_constant<int, 5>;
-using D6 = std::integral_constant<int, 6>;
 
 long long ipow(long long b, int e) {
   long long r = 1;
