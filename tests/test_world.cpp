@@ -1,14 +1,30 @@
 // World::step against closed forms: free fall and projectiles, impulses, the 3D torque-free top
 // (Jacobi elliptic functions, Landau & Lifshitz 37), conservation in 4D-6D, rotor health over 1e6 steps.
 #include <catch2/catch.hpp>
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <random>
+#include <vector>
 
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/world.hpp"
 
 using namespace wedge;
+
+// Counts heap allocations in this test binary, so a test can assert that World::step makes none.
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -305,4 +321,38 @@ TEST_CASE("the same inputs give bit-identical states", "[world][determinism]") {
   const std::uint64_t a = run(), b = run();
   CHECK(a == b);
   CHECK(a != 0);
+}
+
+template <int N>
+long allocations_in_steps() {
+  WorldSettings<N> s;
+  s.gravity[0] = -9.81;
+  World<N> world(s);
+  Vec<N> sides;
+  for (int i = 0; i < N; ++i) sides[i] = 0.4 + 0.3 * i;
+  for (int b = 0; b < 8; ++b) {
+    BodyDef<N> d = box_body<N>(sides);
+    for (int i = 0; i < kBiv<N>; ++i) d.angular_velocity[i] = 0.5 * b + i;
+    d.linear_drag = 0.1;
+    const BodyId id = world.add_body(d);
+    world.apply_torque(id, Bivector<N>::basis(0, 1));
+  }
+  world.step(1e-3);  // warm-up outside the count
+  const long before = g_allocations.load();
+  for (int i = 0; i < 100; ++i) {
+    world.apply_force_at(BodyId{0}, Vec<N>::Ones(), Vec<N>::Zero());
+    world.step(1e-3);
+  }
+  return g_allocations.load() - before;
+}
+
+TEST_CASE("World::step makes no heap allocation, in any dimension", "[world]") {
+  const long before = g_allocations.load();
+  delete new std::vector<double>(3);  // the counter sees allocations (2 here)
+  CHECK(g_allocations.load() - before == 2);
+  CHECK(allocations_in_steps<2>() == 0);
+  CHECK(allocations_in_steps<3>() == 0);
+  CHECK(allocations_in_steps<4>() == 0);
+  CHECK(allocations_in_steps<5>() == 0);
+  CHECK(allocations_in_steps<6>() == 0);
 }
