@@ -100,7 +100,7 @@ const char* kProjectile3 = R"({"dim": 3, "gravity": [0.5, -9.81, 0.25], "timeste
 
 }  // namespace
 
-TEST_CASE("wedge --help lists the verbs; every verb has --help", "[cli]") {
+TEST_CASE("wedge --help lists the verbs, every verb has --help", "[cli]") {
   TempDir dir;
   const Result top = dir.run("--help");
   CHECK(top.code == 0);

@@ -32,7 +32,7 @@ Rotor<N> drifted(const Bivector<N>& w, double h, int steps) {
 
 }  // namespace
 
-TEST_CASE("4D: scalar normalisation leaves a double-rotation rotor broken; factorisation repairs it",
+TEST_CASE("4D: scalar normalisation leaves a double-rotation rotor broken, factorisation repairs it",
           "[ga][repair]") {
   // A double rotation (w01 != 0 and w23 != 0) integrated with explicit steps grows a grade-4 error
   // that keeps R ~R away from 1 even after dividing by |R|.

@@ -485,7 +485,7 @@ TEMPLATE_TEST_CASE("Random convex polytope: volume, centre and inertia agree wit
 }
 
 // ------------------------------------------------------------------------------------------ transformations
-TEMPLATE_TEST_CASE("Translation moves the centre only; rotation gives I' = [Q]_2 I [Q]_2^T (eq. 4)", "[mass]", D2, D3,
+TEMPLATE_TEST_CASE("Translation moves the centre only, rotation gives I' = [Q]_2 I [Q]_2^T (eq. 4)", "[mass]", D2, D3,
                    D4, D5, D6) {
   constexpr int N = TestType::value;
   std::mt19937_64 rng(77 + N);
@@ -611,7 +611,7 @@ TEMPLATE_TEST_CASE("Principal frame of a rotated, translated box mesh: the box's
   CHECK(rel_diff(BivMat<N>(b * f.inertia * b.transpose()), p.inertia) <= 1e-11);
 }
 
-TEMPLATE_TEST_CASE("Principal frame: identity for axis-aligned bodies; diagonal for a random polytope", "[mass]", D2,
+TEMPLATE_TEST_CASE("Principal frame: identity for axis-aligned bodies, diagonal for a random polytope", "[mass]", D2,
                    D3, D4, D5, D6) {
   constexpr int N = TestType::value;
   Vec<N> h;

@@ -124,7 +124,7 @@ TEST_CASE("linear and angular drag decay as 1/(1+hc)^n and converge to exp(-ct)"
   CHECK(world.body(id).velocity.norm() == Approx(d.velocity.norm() * std::exp(-0.5 * n * h)).epsilon(1e-3));
 }
 
-TEST_CASE("impulses: v += j/m and w += I'^-1 (r ^ j); momentum is conserved", "[world]") {
+TEST_CASE("impulses: v += j/m and w += I'^-1 (r ^ j), momentum is conserved", "[world]") {
   World<4> world;
   BodyDef<4> d = box_body<4>(vec<4>({1.1, 0.3, 2.5, 0.7}), 2.0);
   d.rotor = exp(Bivector<4>::basis(0, 2) * 0.4 + Bivector<4>::basis(1, 3) * -0.3);
@@ -144,7 +144,7 @@ TEST_CASE("impulses: v += j/m and w += I'^-1 (r ^ j); momentum is conserved", "[
   CHECK((b.velocity_at(p) - k * j).norm() < 1e-14);
 }
 
-TEST_CASE("static and kinematic bodies ignore forces; kinematic ones move with their velocities", "[world]") {
+TEST_CASE("static and kinematic bodies ignore forces, kinematic ones move with their velocities", "[world]") {
   WorldSettings<3> s;
   s.gravity = vec<3>({0, -10, 0});
   World<3> world(s);
