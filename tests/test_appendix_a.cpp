@@ -11,11 +11,13 @@
 // (an O(1) error).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "appendix_a.hpp"
 #include "reference_ga.hpp"
 #include "wedge/ga/products.hpp"
 
@@ -77,56 +79,15 @@ void check_against_paper(const wedge::Vec<N>& r, const wedge::WedgeMat<N>& paper
 
 }  // namespace
 
-TEST_CASE("appendix A: 2D [r]_* and Delta I", "[appendix-a]") {
-  std::mt19937_64 rng(2020);
+template <int N>
+void check_dimension(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
   for (int s = 0; s < kSamples; ++s) {
-    const wedge::Vec<2> r = random_vec<2>(rng);
-    const double x = r[0], y = r[1];
-    wedge::WedgeMat<2> paper_wedge;
-    paper_wedge << -y, x;
-    wedge::BivMat<2> paper_delta_i;
-    paper_delta_i << x * x + y * y;
-    check_against_paper<2>(r, paper_wedge, paper_delta_i, rng);
+    const wedge::Vec<N> r = random_vec<N>(rng);
+    check_against_paper<N>(r, paper::wedge_matrix(r), paper::delta_i(r), rng);
   }
 }
 
-TEST_CASE("appendix A: 3D [r]_* and Delta I", "[appendix-a]") {
-  std::mt19937_64 rng(2021);
-  for (int s = 0; s < kSamples; ++s) {
-    const wedge::Vec<3> r = random_vec<3>(rng);
-    const double x = r[0], y = r[1], z = r[2];
-    wedge::WedgeMat<3> paper_wedge;
-    paper_wedge << -y, x, 0,  //
-        -z, 0, x,             //
-        0, -z, y;
-    wedge::BivMat<3> paper_delta_i;
-    paper_delta_i << x * x + y * y, y * z, -x * z,  //
-        y * z, x * x + z * z, x * y,                //
-        -x * z, x * y, y * y + z * z;
-    check_against_paper<3>(r, paper_wedge, paper_delta_i, rng);
-  }
-}
-
-TEST_CASE("appendix A: 4D [r]_* and Delta I", "[appendix-a]") {
-  std::mt19937_64 rng(2022);
-  for (int s = 0; s < kSamples; ++s) {
-    const wedge::Vec<4> r = random_vec<4>(rng);
-    const double x = r[0], y = r[1], z = r[2], w = r[3];
-    wedge::WedgeMat<4> paper_wedge;
-    paper_wedge << -y, x, 0, 0,  //
-        -z, 0, x, 0,             //
-        -w, 0, 0, x,             //
-        0, -z, y, 0,             //
-        0, -w, 0, y,             //
-        0, 0, -w, z;
-    // Exactly as printed, including the order of the factors ("w^2 + x^2", "-wx").
-    wedge::BivMat<4> paper_delta_i;
-    paper_delta_i << x * x + y * y, y * z, y * w, -x * z, -x * w, 0,  //
-        y * z, x * x + z * z, z * w, x * y, 0, -x * w,                //
-        y * w, z * w, w * w + x * x, 0, x * y, x * z,                 //
-        -x * z, x * y, 0, y * y + z * z, z * w, -y * w,               //
-        -x * w, 0, x * y, z * w, w * w + y * y, y * z,                //
-        0, -w * x, x * z, -y * w, y * z, w * w + z * z;
-    check_against_paper<4>(r, paper_wedge, paper_delta_i, rng);
-  }
-}
+TEST_CASE("appendix A: 2D [r]_* and Delta I", "[appendix-a]") { check_dimension<2>(2020); }
+TEST_CASE("appendix A: 3D [r]_* and Delta I", "[appendix-a]") { check_dimension<3>(2021); }
+TEST_CASE("appendix A: 4D [r]_* and Delta I", "[appendix-a]") { check_dimension<4>(2022); }

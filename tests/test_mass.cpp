@@ -37,6 +37,7 @@
 #include "wedge/mass.hpp"
 #include "wedge/mesh.hpp"
 #include "wedge/shape.hpp"
+#include "appendix_a.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -133,48 +134,16 @@ double inscribed_radius(const SimplexMesh<N>& m) {
 
 // ------------------------------------------------------------------------------------------ appendix A
 TEST_CASE("Appendix A: [r]_* and Delta I = sum C_ij [e_i]_*[e_j]_*^T for a point mass, 2D/3D/4D", "[mass]") {
-  const double x = 0.7, y = -1.3, z = 2.1, w = -0.4;
-  {
-    const Vec<2> r(x, y);
-    Eigen::Matrix<double, 1, 2> star;
-    star << -y, x;
-    Eigen::Matrix<double, 1, 1> di;
-    di << x * x + y * y;
-    CHECK(rel_diff(wedge::wedge_matrix<2>(r), star) == 0.0);
-    CHECK(rel_diff(wedge::inertia_from_covariance<2>(r * r.transpose()), di) < 1e-15);
-  }
-  {
-    const Vec<3> r(x, y, z);
-    Eigen::Matrix<double, 3, 3> star, di;
-    star << -y, x, 0,  //
-        -z, 0, x,      //
-        0, -z, y;
-    di << x * x + y * y, y * z, -x * z,  //
-        y * z, x * x + z * z, x * y,     //
-        -x * z, x * y, y * y + z * z;
-    CHECK(rel_diff(wedge::wedge_matrix<3>(r), star) == 0.0);
-    CHECK(rel_diff(wedge::inertia_from_covariance<3>(r * r.transpose()), di) < 1e-15);
-  }
-  {
-    Vec<4> r;
-    r << x, y, z, w;
-    Eigen::Matrix<double, 6, 4> star;
-    star << -y, x, 0, 0,  //
-        -z, 0, x, 0,      //
-        -w, 0, 0, x,      //
-        0, -z, y, 0,      //
-        0, -w, 0, y,      //
-        0, 0, -w, z;
-    Eigen::Matrix<double, 6, 6> di;
-    di << x * x + y * y, y * z, y * w, -x * z, -x * w, 0,  //
-        y * z, x * x + z * z, z * w, x * y, 0, -x * w,     //
-        y * w, z * w, w * w + x * x, 0, x * y, x * z,      //
-        -x * z, x * y, 0, y * y + z * z, z * w, -y * w,    //
-        -x * w, 0, x * y, z * w, w * w + y * y, y * z,     //
-        0, -w * x, x * z, -y * w, y * z, w * w + z * z;
-    CHECK(rel_diff(wedge::wedge_matrix<4>(r), star) == 0.0);
-    CHECK(rel_diff(wedge::inertia_from_covariance<4>(r * r.transpose()), di) < 1e-15);
-  }
+  // A point mass at r has covariance r r^T; its inertia must be the paper's Delta I (appendix_a.hpp).
+  const Vec<4> r4(0.7, -1.3, 2.1, -0.4);
+  const Vec<2> r2 = r4.head<2>();
+  const Vec<3> r3 = r4.head<3>();
+  CHECK(rel_diff(wedge::wedge_matrix<2>(r2), paper::wedge_matrix(r2)) == 0.0);
+  CHECK(rel_diff(wedge::inertia_from_covariance<2>(r2 * r2.transpose()), paper::delta_i(r2)) < 1e-15);
+  CHECK(rel_diff(wedge::wedge_matrix<3>(r3), paper::wedge_matrix(r3)) == 0.0);
+  CHECK(rel_diff(wedge::inertia_from_covariance<3>(r3 * r3.transpose()), paper::delta_i(r3)) < 1e-15);
+  CHECK(rel_diff(wedge::wedge_matrix<4>(r4), paper::wedge_matrix(r4)) == 0.0);
+  CHECK(rel_diff(wedge::inertia_from_covariance<4>(r4 * r4.transpose()), paper::delta_i(r4)) < 1e-15);
 }
 
 // ------------------------------------------------------------------------------------------ boxes
@@ -534,11 +503,8 @@ TEST_CASE("Parallel axes: I_origin = I_centre + m Delta I(c), with the paper's D
     for (auto& v : mesh.vertices) v += t;
     const auto p = wedge::mass_properties<3>(mesh, density);
     const auto box = wedge::box_mass_properties<3>(h, density);
-    const double x = t[0], y = t[1], z = t[2], m = box.mass;
-    Eigen::Matrix<double, 3, 3> di;
-    di << x * x + y * y, y * z, -x * z,  //
-        y * z, x * x + z * z, x * y,     //
-        -x * z, x * y, y * y + z * z;
+    const double m = box.mass;
+    const Mat<3> di = paper::delta_i(t);
     CHECK(rel_diff(p.inertia, box.inertia) <= kExact);
     CHECK(rel_diff(wedge::inertia_about<3>(p, Vec<3>::Zero()), Mat<3>(box.inertia + m * di)) <= kExact);
   }
@@ -550,14 +516,8 @@ TEST_CASE("Parallel axes: I_origin = I_centre + m Delta I(c), with the paper's D
     for (auto& v : mesh.vertices) v += t;
     const auto p = wedge::mass_properties<4>(mesh, density);
     const auto box = wedge::box_mass_properties<4>(h, density);
-    const double x = t[0], y = t[1], z = t[2], w = t[3], m = box.mass;
-    Eigen::Matrix<double, 6, 6> di;
-    di << x * x + y * y, y * z, y * w, -x * z, -x * w, 0,  //
-        y * z, x * x + z * z, z * w, x * y, 0, -x * w,     //
-        y * w, z * w, w * w + x * x, 0, x * y, x * z,      //
-        -x * z, x * y, 0, y * y + z * z, z * w, -y * w,    //
-        -x * w, 0, x * y, z * w, w * w + y * y, y * z,     //
-        0, -w * x, x * z, -y * w, y * z, w * w + z * z;
+    const double m = box.mass;
+    const wedge::BivMat<4> di = paper::delta_i(t);
     CHECK(rel_diff(p.inertia, box.inertia) <= kExact);
     CHECK(rel_diff(wedge::inertia_about<4>(p, Vec<4>::Zero()), BivMat<4>(box.inertia + m * di)) <= kExact);
     // About an arbitrary point p0: Delta I of c - p0.
