@@ -38,6 +38,7 @@ Shape<N>::Shape(shapes::Box<N> box) : value_(box) {
     const std::string what = "box half-extent " + std::to_string(i);
     require_size(box.half_extents[i], what.c_str());
   }
+  features_ = std::make_shared<const ConvexFeatures<N>>(box_features<N>(box.half_extents));
 }
 
 template <int N>
@@ -49,6 +50,7 @@ template <int N>
 Shape<N>::Shape(shapes::Polytope<N> polytope) {
   try {
     hull_ = std::make_shared<const ConvexHull<N>>(convex_hull<N>(polytope.vertices));
+    features_ = std::make_shared<const ConvexFeatures<N>>(convex_features<N>(*hull_));
   } catch (const Error& e) {
     throw Error(std::string("polytope: ") + e.what());
   }
@@ -58,6 +60,7 @@ Shape<N>::Shape(shapes::Polytope<N> polytope) {
 template <int N>
 Shape<N>::Shape(shapes::Mesh<N> mesh) {
   validate(mesh.mesh);
+  features_ = std::make_shared<const ConvexFeatures<N>>(convex_features<N>(convex_hull<N>(mesh.mesh.vertices)));
   value_ = std::move(mesh);
 }
 

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "wedge/collision/convex_features.hpp"
 #include "wedge/ga/types.hpp"
 #include "wedge/hull.hpp"
 #include "wedge/mesh.hpp"
@@ -95,10 +96,14 @@ struct Shape {
   bool bounded() const { return !is<shapes::Halfspace<N>>(); }
   // The convex hull of a Polytope, computed when the shape was created; throws for other kinds.
   const ConvexHull<N>& hull() const;
+  // The face lattice for collision detection: set for boxes, polytopes and meshes (a mesh collides as
+  // its convex hull), null for balls, round products and half-spaces.
+  const ConvexFeatures<N>* features() const { return features_.get(); }
 
  private:
   Variant value_;
   std::shared_ptr<const ConvexHull<N>> hull_;
+  std::shared_ptr<const ConvexFeatures<N>> features_;
 };
 
 // A boundary mesh of a bounded shape (box, ball and round products tessellated at `subdivisions`,
