@@ -1,5 +1,5 @@
 // wedge: the command-line front end of the engine. Dispatches to one verb per file (inertia.cpp,
-// simulate.cpp); exit codes in cli_error.hpp.
+// simulate.cpp, collide.cpp); exit codes in cli_error.hpp.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -19,8 +19,10 @@ int main(int argc, char** argv) {
 
   InertiaOptions inertia;
   SimulateOptions simulate;
+  CollideOptions collide;
   CLI::App* inertia_cmd = add_inertia_verb(app, inertia);
   CLI::App* simulate_cmd = add_simulate_verb(app, simulate);
+  CLI::App* collide_cmd = add_collide_verb(app, collide);
 
   try {
     app.parse(argc, argv);
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
   try {
     if (inertia_cmd->parsed()) return run_inertia(inertia);
     if (simulate_cmd->parsed()) return run_simulate(simulate);
+    if (collide_cmd->parsed()) return run_collide(collide);
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
   } catch (const Failure& e) {

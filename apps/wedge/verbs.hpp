@@ -28,4 +28,13 @@ struct SimulateOptions {
 CLI::App* add_simulate_verb(CLI::App& app, SimulateOptions& options);
 int run_simulate(const SimulateOptions& options);
 
+// wedge collide SCENE.json [--margin M] [--out FILE]
+struct CollideOptions {
+  std::string scene;
+  std::string margin;
+  std::string out;
+};
+CLI::App* add_collide_verb(CLI::App& app, CollideOptions& options);
+int run_collide(const CollideOptions& options);
+
 }  // namespace wedge::cli
