@@ -28,7 +28,7 @@ namespace wedge::oracle {
 
 // ---- (a) GLPK --------------------------------------------------------------------------------------
 
-LpSeparation lp_separation(const Points& a, const Points& b, bool exact) {
+LpSeparation lp_separation(const Points& a, const Points& b) {
   if (a.empty() || b.empty()) throw std::invalid_argument("lp_separation: empty point set");
   const int n = int(a[0].size()), na = int(a.size()), nb = int(b.size());
   glp_term_out(GLP_OFF);
@@ -72,13 +72,22 @@ LpSeparation lp_separation(const Points& a, const Points& b, bool exact) {
   }
   glp_load_matrix(p, int(ia.size()) - 1, ia.data(), ja.data(), ar.data());
 
-  glp_smcp parm;
-  glp_init_smcp(&parm);
-  parm.msg_lev = GLP_MSG_OFF;
-  parm.presolve = GLP_OFF;
+  // GLPK's default primal feasibility tolerance (1e-7) would let a gap below 1e-7 pass as t = 0; the
+  // data are of order 1 and the LPs small, so a much tighter one is tried first. On near-degenerate
+  // LPs (gaps below about 1e-9) it can fail to find any feasible basis; then looser ones are tried.
   LpSeparation out;
-  int code = glp_simplex(p, &parm);
-  if (code == 0 && glp_get_status(p) == GLP_OPT && exact) code = glp_exact(p, &parm);
+  int code = 0;
+  for (const double tol : {1e-12, 1e-10, 1e-7}) {
+    glp_smcp parm;
+    glp_init_smcp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    parm.presolve = GLP_OFF;
+    parm.tol_bnd = tol;
+    glp_std_basis(p);
+    code = glp_simplex(p, &parm);
+    out.feasibility_tolerance = tol;
+    if (code == 0 && glp_get_status(p) == GLP_OPT) break;
+  }
   if (code != 0) {
     out.status = "GLPK returned error code " + std::to_string(code);
     return out;
