@@ -129,6 +129,44 @@ TEST_CASE("wedge inertia: the shipped tesseract and a mesh simplex", "[cli]") {
   for (const auto& c : k.at("center")) CHECK(close_rel(c.get<double>(), 0.25, 1e-12));
 }
 
+TEST_CASE("wedge inertia: regular 4-polytopes by name, and their bad input", "[cli]") {
+  TempDir dir;
+  // The 24-cell's edge equals its circumradius R and its 4-volume is 2 a^4 (Coxeter, Regular
+  // Polytopes, table I): R = 0.9 gives V = 1.3122, mass 2.6244 at density 2. The hull has 24 octahedral
+  // cells of 4 tetrahedra each; round-off 1e-15, checked to 1e-12 relative.
+  dir.write("c24.json", R"({"dim": 4, "shape": {"type": "regular_polytope", "polytope": "24-cell", "circumradius": 0.9},
+    "density": 2.0})");
+  const Result r = dir.run("inertia c24.json");
+  REQUIRE(r.code == 0);
+  const json j = json::parse(r.out);
+  CHECK(close_rel(j.at("volume").get<double>(), 2.0 * std::pow(0.9, 4), 1e-12));
+  CHECK(close_rel(j.at("mass").get<double>(), 4.0 * std::pow(0.9, 4), 1e-12));
+  for (const auto& c : j.at("center")) CHECK(std::abs(c.get<double>()) < 1e-12);
+
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"dim": 4, "shape": {"type": "regular_polytope", "polytope": "7-cell", "circumradius": 1}})",
+       "shape.polytope: unknown regular polytope \"7-cell\""},
+      {R"({"dim": 3, "shape": {"type": "regular_polytope", "polytope": "tesseract", "circumradius": 1}})",
+       "shape.type: regular polytopes exist only in 4D here (this scene is 3D)"},
+      {R"({"dim": 4, "shape": {"type": "regular_polytope", "polytope": "16-cell", "circumradius": -1}})",
+       "shape.circumradius: the circumradius must be positive"},
+      {R"({"dim": 4, "shape": {"type": "regular_polytope", "polytope": "16-cell"}})", "circumradius"},
+      {R"({"dim": 4, "shape": {"type": "regular_polytope", "polytope": "16-cell", "circumradius": 1, "edge": 1}})",
+       "shape.edge"},
+  };
+  for (const auto& [scene, message] : cases) {
+    INFO(scene);
+    dir.write("bad.json", scene);
+    const Result e = dir.run("inertia bad.json");
+    INFO(e.err);
+    CHECK(e.code == 2);
+    CHECK(e.out.empty());
+    CHECK(e.err.find("bad.json") != std::string::npos);
+    CHECK(e.err.find(message) != std::string::npos);
+    CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+  }
+}
+
 TEST_CASE("wedge simulate: a 3D projectile follows the discrete symplectic-Euler solution", "[cli]") {
   TempDir dir;
   dir.write("projectile.json", kProjectile3);
@@ -220,7 +258,7 @@ TEST_CASE("wedge simulate: every shipped scene runs", "[cli]") {
     CHECK(r.out.find("null") == std::string::npos);
     ++count;
   }
-  CHECK(count >= 7);
+  CHECK(count >= 8);
 }
 
 TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli]") {

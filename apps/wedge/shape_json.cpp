@@ -6,19 +6,22 @@
 //   {"type": "cylinder" | "cubinder" | "spherinder", "radius": r, "half_length": h}
 //   {"type": "duocylinder", "radii": [r1, r2], "half_length": h (5D, 6D only)}
 //   {"type": "round_product", "factors": [{"axes": [..], "radius": r} | {"axes": [a], "half_length": h}, ..]}
+//   {"type": "regular_polytope", "polytope": "5-cell" | "tesseract" | .., "circumradius": R}   (4D only)
 // Sizes, meshes and hulls are validated by the Shape constructors (wedge::Error); sizes and index
 // ranges of the JSON itself are checked here, with paths.
 #include <limits>
 
 #include "scene_json.hpp"
 #include "wedge/error.hpp"
+#include "wedge/regular_polytopes.hpp"
 
 namespace wedge::cli {
 
 namespace {
 
 constexpr const char* kShapeTypes =
-    "box, sphere, ball, polytope, mesh, halfspace, cylinder, cubinder, spherinder, duocylinder, round_product";
+    "box, sphere, ball, polytope, mesh, halfspace, cylinder, cubinder, spherinder, duocylinder, round_product, "
+    "regular_polytope";
 
 template <int N>
 std::vector<Vec<N>> read_points(const Node& node) {
@@ -110,6 +113,20 @@ Shape<N> read_shape_object(ObjectReader& obj, const Node& type_node, const std::
     return Shape<N>::duocylinder(radii[0], radii[1], h);
   }
   if (type == "round_product") return Shape<N>::round_product(read_factors(obj.required("factors"), N));
+  if (type == "regular_polytope") {
+    if constexpr (N == 4) {
+      const Node name_node = obj.required("polytope");
+      const std::string name = name_node.string();
+      const std::optional<RegularPolytope4> which = parse_regular_polytope(name);
+      if (!which) name_node.fail("unknown regular polytope \"" + name + "\" (known: " + regular_polytope_names() + ")");
+      const Node radius_node = obj.required("circumradius");
+      const double radius = radius_node.number();
+      if (!(radius > 0.0)) radius_node.fail("the circumradius must be positive (m)");
+      return regular_polytope_shape(*which, radius);
+    } else {
+      type_node.fail("regular polytopes exist only in 4D here (this scene is " + std::to_string(N) + "D)");
+    }
+  }
   type_node.fail("unknown shape type \"" + type + "\" (known: " + kShapeTypes + ")");
 }
 
