@@ -7,6 +7,7 @@
 
 #include "test_util.hpp"
 #include "wedge/collision/narrow_phase.hpp"
+#include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/products.hpp"
 #include "wedge/hull.hpp"
