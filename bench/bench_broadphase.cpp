@@ -1,13 +1,15 @@
 // Broad-phase timings (see bench/README.md, "Broad phase"):
-//   BM_BroadPhaseUpdate<N>/n  one broad-phase update of n moving bodies: every proxy gets its new box and
-//                             displacement (move_proxy), then update_pairs; time per update and per body
+//   BM_BroadPhaseUpdate<N>/n/s  one broad-phase update of n moving bodies: every proxy gets its new box
+//                             and displacement (move_proxy), then update_pairs; time per update and per
+//                             body. s: the largest step per axis in mm (2: a pile settling, 20: a pile
+//                             being stirred, where some bodies leave their fat boxes every update)
 //   BM_BroadPhaseBuild<N>/n   n proxies created in an empty broad phase, then the first update_pairs
 //                             (every proxy queries): the cost of loading a scene
 //   BM_BruteForcePairs<N>/n   the quadratic baseline: every pair of the same fat boxes tested
-// The scene is a settling pile: boxes of half-extent 0.3..0.5 m, centres uniform in a cube sized so that
-// each body's fat box overlaps about 4 others; each update moves every body by a random step of up to
-// 4 mm per axis (0.5 m/s at 120 Hz) with a pull of 5% of its offset back to its rest position, so the
-// pile jitters in place (stationary spread about 1 cm per axis) instead of diffusing.
+// The scene is a pile: boxes of half-extent 0.3..0.5 m, centres uniform in a cube sized so that each
+// body's fat box overlaps about 4 others; each update moves every body by a random step of up to s mm
+// per axis (s = 2: 0.24 m/s at 120 Hz) with a pull of 5% of its offset back to its rest position, so the
+// pile jitters in place (stationary spread 1.8 s mm per axis) instead of diffusing.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -55,7 +57,8 @@ void BM_BroadPhaseUpdate(benchmark::State& state) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   bp.update_pairs(pairs);
   std::mt19937_64 rng(2);
-  std::uniform_real_distribution<double> step(-0.004, 0.004);
+  const double s = 1e-3 * double(state.range(1));
+  std::uniform_real_distribution<double> step(-s, s);
   std::vector<Vec<N>> displacement(n);
   auto prepare = [&] {
     for (int k = 0; k < n; ++k) {
@@ -131,8 +134,8 @@ void BM_BruteForcePairs(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK_TEMPLATE(BM_BroadPhaseUpdate, 3)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
-BENCHMARK_TEMPLATE(BM_BroadPhaseUpdate, 4)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_BroadPhaseUpdate, 3)->ArgsProduct({{1000, 10000}, {2, 20}})->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_BroadPhaseUpdate, 4)->ArgsProduct({{1000, 10000}, {2, 20}})->Unit(benchmark::kMicrosecond);
 BENCHMARK_TEMPLATE(BM_BroadPhaseBuild, 3)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_TEMPLATE(BM_BroadPhaseBuild, 4)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_TEMPLATE(BM_BruteForcePairs, 4)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);

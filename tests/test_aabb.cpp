@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "test_util.hpp"
+#include "uniform_vec.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
@@ -29,14 +30,6 @@ using wedge::Vec;
 // Round-off allowance for comparing world coordinates of magnitude <= ~20 computed in different orders
 // (sums of N <= 6 products): 1e-12 is ~5000 ulps at that size, and far below any real error (>= 1e-6).
 constexpr double kRoundOff = 1e-12;
-
-template <int N>
-Vec<N> random_vec(std::mt19937_64& rng, double lo, double hi) {
-  std::uniform_real_distribution<double> u(lo, hi);
-  Vec<N> v;
-  for (int i = 0; i < N; ++i) v[i] = u(rng);
-  return v;
-}
 
 // A general rotation (exp of a random bivector with components of size ~2: double and triple
 // rotations from 4D on), with its matrix.
@@ -134,7 +127,7 @@ bool in_product(const std::vector<ProductFactor>& factors, const Vec<N>& x) {
 
 template <int N>
 void check_round_product(const Shape<N>& shape, const std::vector<ProductFactor>& factors, std::mt19937_64& rng) {
-  const Vec<N> p = random_vec<N>(rng, -10.0, 10.0);
+  const Vec<N> p = uniform_vec<N>(rng, -10.0, 10.0);
   const Mat<N> r = random_rotation<N>(rng);
   const Aabb<N> box = wedge::world_aabb<N>(shape, p, r);
   REQUIRE(box.valid());
@@ -209,10 +202,10 @@ TEMPLATE_TEST_CASE_SIG("aabb: box and polytope world boxes equal brute force ove
                        ((int N), N), 2, 3, 4, 5, 6) {
   std::mt19937_64 rng(100 + N);
   for (int trial = 0; trial < 20; ++trial) {
-    const Vec<N> p = random_vec<N>(rng, -10.0, 10.0);
+    const Vec<N> p = uniform_vec<N>(rng, -10.0, 10.0);
     const Mat<N> r = random_rotation<N>(rng);
     // Box: the 2^N corners.
-    const Vec<N> h = random_vec<N>(rng, 0.1, 2.0);
+    const Vec<N> h = uniform_vec<N>(rng, 0.1, 2.0);
     std::vector<Vec<N>> corners;
     for (int m = 0; m < (1 << N); ++m) {
       Vec<N> c;
@@ -222,7 +215,7 @@ TEMPLATE_TEST_CASE_SIG("aabb: box and polytope world boxes equal brute force ove
     check_tight_over_points<N>(wedge::world_aabb<N>(Shape<N>::box(h), p, r), placed<N>(corners, p, r));
     // Polytope: every input point, including the interior ones the hull drops.
     std::vector<Vec<N>> points;
-    for (int k = 0; k < 3 * N + 4; ++k) points.push_back(random_vec<N>(rng, -1.0, 1.0));
+    for (int k = 0; k < 3 * N + 4; ++k) points.push_back(uniform_vec<N>(rng, -1.0, 1.0));
     const Shape<N> poly = Shape<N>::polytope(points);
     check_tight_over_points<N>(wedge::world_aabb<N>(poly, p, r), placed<N>(points, p, r));
     // The rotor overload agrees with the matrix one.
@@ -238,14 +231,14 @@ TEMPLATE_TEST_CASE_SIG("aabb: mesh world boxes equal brute force over the mesh v
                        3, 4, 5, 6) {
   std::mt19937_64 rng(200 + N);
   // A box mesh (subdivided, so most vertices are not corners) and the boundary of a random hull.
-  const wedge::SimplexMesh<N> box = wedge::box_mesh<N>(random_vec<N>(rng, 0.2, 1.5), 2);
+  const wedge::SimplexMesh<N> box = wedge::box_mesh<N>(uniform_vec<N>(rng, 0.2, 1.5), 2);
   std::vector<Vec<N>> points;
-  for (int k = 0; k < 3 * N + 4; ++k) points.push_back(random_vec<N>(rng, -1.0, 1.0));
+  for (int k = 0; k < 3 * N + 4; ++k) points.push_back(uniform_vec<N>(rng, -1.0, 1.0));
   const wedge::SimplexMesh<N> hull = wedge::convex_hull_mesh<N>(points);
   for (const auto& mesh : {box, hull}) {
     const Shape<N> shape = Shape<N>::mesh(mesh);
     for (int trial = 0; trial < 10; ++trial) {
-      const Vec<N> p = random_vec<N>(rng, -10.0, 10.0);
+      const Vec<N> p = uniform_vec<N>(rng, -10.0, 10.0);
       const Mat<N> r = random_rotation<N>(rng);
       check_tight_over_points<N>(wedge::world_aabb<N>(shape, p, r), placed<N>(mesh.vertices, p, r));
     }

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "uniform_vec.hpp"
 #include "wedge/collision/broadphase.hpp"
 #include "wedge/error.hpp"
 
@@ -23,16 +24,8 @@ using wedge::Vec;
 using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 template <int N>
-Vec<N> random_vec(std::mt19937_64& rng, double lo, double hi) {
-  std::uniform_real_distribution<double> u(lo, hi);
-  Vec<N> v;
-  for (int i = 0; i < N; ++i) v[i] = u(rng);
-  return v;
-}
-
-template <int N>
 Aabb<N> random_box(std::mt19937_64& rng, double world, double max_half) {
-  return Aabb<N>::from_center(random_vec<N>(rng, -world, world), random_vec<N>(rng, 0.05, max_half));
+  return Aabb<N>::from_center(uniform_vec<N>(rng, -world, world), uniform_vec<N>(rng, 0.05, max_half));
 }
 
 // The oracle: every pair of live proxies with overlapping fat boxes and different user ids, as sorted
@@ -92,10 +85,10 @@ void random_history(std::uint64_t seed) {
       Aabb<N> box = tight[proxy];
       Vec<N> displacement = Vec<N>::Zero();
       if (kind < 0.5) {
-        const Vec<N> d = random_vec<N>(rng, -0.02, 0.02);  // jitter, mostly inside the 0.05 margin
+        const Vec<N> d = uniform_vec<N>(rng, -0.02, 0.02);  // jitter, mostly inside the 0.05 margin
         box = {box.lo + d, box.hi + d};
       } else if (kind < 0.7) {
-        displacement = random_vec<N>(rng, -0.3, 0.3);  // fast: the fat box stretches ahead
+        displacement = uniform_vec<N>(rng, -0.3, 0.3);  // fast: the fat box stretches ahead
         box = {box.lo + displacement, box.hi + displacement};
       } else if (kind < 0.75) {
         box = random_box<N>(rng, world, 0.8);  // teleport and resize
@@ -152,7 +145,7 @@ PileStats pile_4d(int n, double side, std::uint64_t seed) {
   std::vector<Aabb<4>> boxes;
   std::vector<int> proxies;
   for (int k = 0; k < n; ++k) {
-    boxes.push_back(Aabb<4>::from_center(random_vec<4>(rng, -side / 2, side / 2), random_vec<4>(rng, 0.3, 0.5)));
+    boxes.push_back(Aabb<4>::from_center(uniform_vec<4>(rng, -side / 2, side / 2), uniform_vec<4>(rng, 0.3, 0.5)));
     proxies.push_back(bp.create_proxy(boxes.back(), std::uint32_t(k)));
   }
   Pairs pairs;
@@ -163,7 +156,7 @@ PileStats pile_4d(int n, double side, std::uint64_t seed) {
   // A settling step: every body moves by up to 1 cm per axis (1.2 m/s at 120 Hz), inside its fat box;
   // every tenth is knocked 0.2 m along every axis, out of it.
   for (int k = 0; k < n; ++k) {
-    const Vec<4> d = k % 10 == 0 ? Vec<4>::Constant(0.2) : random_vec<4>(rng, -0.01, 0.01);
+    const Vec<4> d = k % 10 == 0 ? Vec<4>::Constant(0.2) : uniform_vec<4>(rng, -0.01, 0.01);
     bp.move_proxy(proxies[k], {boxes[k].lo + d, boxes[k].hi + d}, d);
   }
   bp.update_pairs(pairs);

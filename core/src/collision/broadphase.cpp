@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -57,29 +58,36 @@ void BroadPhase<N>::insert_leaf(int leaf) {
   // c(S u L) plus the growth c(A u L) - c(A) of every ancestor A of S. Branch and bound over the tree
   // (Bittner et al. 2015, "Incremental BVH construction for ray tracing"; Catto, GDC 2019) finds the
   // exact minimum: below a node with inherited growth g no sibling can cost less than c(L) + g.
-  // Box2D 2.4's greedy descent finds a worse sibling, and the trees it grows in 4D need 3x more
-  // tests per query at 10^4 leaves, growing like n^0.55 instead of log n.
+  // Box2D 2.4's greedy descent finds a worse sibling: the trees it grows in 4D need 3.4x more tests per
+  // query at 10^4 leaves (407 against 121), growing like n^0.55 instead of log n. The search visits
+  // ~240 nodes per insertion there against ~15 for the greedy descent, about what one query saves.
   const Aabb<N> box = nodes_[leaf].box;
   const double leaf_cost = cost(box);
   int index = root_;
   double best = std::numeric_limits<double>::infinity();
   insert_stack_.clear();
-  insert_stack_.push_back({root_, 0.0});
+  insert_stack_.push_back({root_, 0.0, cost(merged(nodes_[root_].box, box))});
   while (!insert_stack_.empty()) {
     const Candidate c = insert_stack_.back();
     insert_stack_.pop_back();
+    if (leaf_cost + c.inherited >= best) continue;  // the bound improved since it was pushed
     const Node& n = nodes_[c.node];
-    const double direct = cost(merged(n.box, box));
-    if (direct + c.inherited < best) {
-      best = direct + c.inherited;
+    if (c.direct + c.inherited < best) {
+      best = c.direct + c.inherited;
       index = c.node;
     }
     if (n.leaf()) continue;
-    const double inherited = c.inherited + direct - cost(n.box);
-    if (leaf_cost + inherited < best) {
-      insert_stack_.push_back({n.child2, inherited});
-      insert_stack_.push_back({n.child1, inherited});
-    }
+    const double inherited = c.inherited + c.direct - cost(n.box);
+    if (leaf_cost + inherited >= best) continue;
+    // Depth first, into the child that grows less first: a good bound early prunes more (a third
+    // fewer nodes visited than child1-first at 10^4 leaves in 4D).
+    const Node& c1 = nodes_[n.child1];
+    const Node& c2 = nodes_[n.child2];
+    const double d1 = cost(merged(c1.box, box)), d2 = cost(merged(c2.box, box));
+    const Candidate k1{n.child1, inherited, d1}, k2{n.child2, inherited, d2};
+    const bool first_grows_less = d1 - cost(c1.box) <= d2 - cost(c2.box);
+    insert_stack_.push_back(first_grows_less ? k2 : k1);
+    insert_stack_.push_back(first_grows_less ? k1 : k2);
   }
   const int sibling = index;
   const int old_parent = nodes_[sibling].parent;
@@ -91,13 +99,18 @@ void BroadPhase<N>::insert_leaf(int leaf) {
   nodes_[parent].child2 = leaf;
   nodes_[sibling].parent = parent;
   nodes_[leaf].parent = parent;
-  if (old_parent == kNull) {
-    root_ = parent;
-  } else {
-    Node& op = nodes_[old_parent];
-    (op.child1 == sibling ? op.child1 : op.child2) = parent;
-  }
+  replace_child(old_parent, sibling, parent);
   refit_upwards(nodes_[leaf].parent);
+}
+
+template <int N>
+void BroadPhase<N>::replace_child(int parent, int old_child, int new_child) {
+  if (parent == kNull) {
+    root_ = new_child;
+  } else {
+    Node& p = nodes_[parent];
+    (p.child1 == old_child ? p.child1 : p.child2) = new_child;
+  }
 }
 
 template <int N>
@@ -110,12 +123,7 @@ void BroadPhase<N>::remove_leaf(int leaf) {
   const int grandparent = nodes_[parent].parent;
   const int sibling = nodes_[parent].child1 == leaf ? nodes_[parent].child2 : nodes_[parent].child1;
   nodes_[sibling].parent = grandparent;
-  if (grandparent == kNull) {
-    root_ = sibling;
-  } else {
-    Node& g = nodes_[grandparent];
-    (g.child1 == parent ? g.child1 : g.child2) = sibling;
-  }
+  replace_child(grandparent, parent, sibling);
   free_node(parent);
   nodes_[leaf].parent = kNull;
   if (grandparent != kNull) refit_upwards(grandparent);
@@ -153,12 +161,7 @@ int BroadPhase<N>::balance(int a) {
 
   // t replaces a under a's parent.
   T.parent = A.parent;
-  if (T.parent == kNull) {
-    root_ = t;
-  } else {
-    Node& p = nodes_[T.parent];
-    (p.child1 == a ? p.child1 : p.child2) = t;
-  }
+  replace_child(T.parent, a, t);
   // a: children s and y, in a's old child order; t: children a and x.
   if (second_taller) {
     A.child2 = y;

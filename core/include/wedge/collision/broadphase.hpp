@@ -163,6 +163,8 @@ class BroadPhase {
   void free_node(int i);
   void insert_leaf(int leaf);
   void remove_leaf(int leaf);
+  // Points `parent`'s link to old_child at new_child (the root if parent is kNull).
+  void replace_child(int parent, int old_child, int new_child);
   // Recomputes heights and boxes from `start` up to the root, rotating where unbalanced.
   void refit_upwards(int start);
   int balance(int a);
@@ -182,6 +184,7 @@ class BroadPhase {
   struct Candidate {
     int node;
     double inherited;  // the growth of the node's ancestors if the leaf is inserted below them
+    double direct;     // cost(merged(node's box, leaf's box))
   };
   std::vector<Candidate> insert_stack_;  // insert_leaf's branch-and-bound stack, kept to avoid allocation
   std::int64_t node_overlap_tests_ = 0;
