@@ -54,7 +54,7 @@ TEST_CASE("wedge collide: a 4D stack on the ground, contact cells and a body far
   CHECK(xw == std::set<std::pair<double, double>>{{0.3, 0.4}, {0.3, 1.0}, {1.0, 0.4}, {1.0, 1.0}});
 }
 
-TEST_CASE("wedge collide: pairs are exactly those whose bounding boxes overlap; apart ones get -distance",
+TEST_CASE("wedge collide: pairs are exactly those whose bounding boxes overlap, apart ones get -distance",
           "[cli][collide]") {
   // 40 axis-aligned boxes and balls in 3D: their bounding boxes are known without the engine.
   std::mt19937_64 rng(5);
