@@ -6,12 +6,27 @@
 //     of the N-1-k columns C_t restricted to them: a cross product in N-k dimensions, not N.
 // In 4D that is 8 face normals plus 24 + 24 = 48 mixed axes. A box is centrally symmetric, so the overlap
 // along a unit axis L is r_a + r_b - |L . d| with r = sum |L . axis| h (d: centre to centre).
+#include <array>
 #include <cmath>
 
 #include "collision/narrow.hpp"
 
 namespace wedge::collision {
 namespace {
+
+// The subsets of {0..N-1} with K elements, as bit masks, in increasing order (computed at compile time).
+template <int N, int K>
+constexpr auto subsets() {
+  constexpr int count = [] {
+    int c = 0;
+    for (unsigned s = 0; s < (1u << N); ++s) c += bit_count(s) == K;
+    return c;
+  }();
+  std::array<unsigned, count> out{};
+  for (unsigned s = 0, i = 0; s < (1u << N); ++s)
+    if (bit_count(s) == K) out[i++] = s;
+  return out;
+}
 
 template <int N>
 struct BoxSat {
@@ -31,13 +46,13 @@ struct BoxSat {
   template <int K>
   bool mixed() {
     constexpr int M = N - K;
-    for (unsigned s = 0; s < (1u << N); ++s) {
-      if (__builtin_popcount(s) != K) continue;
+    static constexpr auto kA = subsets<N, K>();
+    static constexpr auto kB = subsets<N, M - 1>();
+    for (const unsigned s : kA) {
       int rest[M];
       for (int i = 0, r = 0; i < N; ++i)
         if (!(s >> i & 1)) rest[r++] = i;
-      for (unsigned t = 0; t < (1u << N); ++t) {
-        if (__builtin_popcount(t) != M - 1) continue;
+      for (const unsigned t : kB) {
         Eigen::Matrix<double, M, M - 1> span;
         for (int j = 0, col = 0; j < N; ++j)
           if (t >> j & 1) {

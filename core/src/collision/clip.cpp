@@ -1,6 +1,5 @@
 // Face clipping in N dimensions and manifold reduction.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "collision/narrow.hpp"
@@ -13,7 +12,7 @@ namespace {
 constexpr std::size_t kMaxClipPoints = 1024;
 
 int shared(const std::uint64_t a_own, const std::uint64_t a_clip, const std::uint64_t b_own, const std::uint64_t b_clip) {
-  return std::popcount(a_own & b_own) + std::popcount(a_clip & b_clip);
+  return bit_count(a_own & b_own) + bit_count(a_clip & b_clip);
 }
 
 }  // namespace

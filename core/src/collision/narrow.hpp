@@ -63,6 +63,14 @@ Manifold<N> flipped(Manifold<N> m) {
   m.normal = -m.normal;
   return m;
 }
+// Bits set in v. Portable SWAR: without -mpopcnt (not in the x86-64 baseline Debian builds for) the
+// builtin becomes a libgcc call, which dominated face clipping.
+constexpr int bit_count(std::uint64_t v) {
+  v = v - ((v >> 1) & 0x5555555555555555ULL);
+  v = (v & 0x3333333333333333ULL) + ((v >> 2) & 0x3333333333333333ULL);
+  v = (v + (v >> 4)) & 0x0f0f0f0f0f0f0f0fULL;
+  return int((v * 0x0101010101010101ULL) >> 56);
+}
 // Mixes feature ids into one 64-bit id.
 inline std::uint64_t mix_id(std::uint64_t h, std::uint64_t v) {
   h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);

@@ -66,21 +66,37 @@ void sat_manifold(const ConvexFeatures<N>& fa, const Transform<N>& ta, const Con
       min_max(va, u, lo, hi);
       min_max(vb, u, lo2, hi2);
       const double tol = 1e-7 * scale;
-      std::vector<int> sa, sb;
+      thread_local std::vector<int> sa, sb;
+      sa.clear();
+      sb.clear();
       for (int i = 0; i < int(va.size()); ++i)
         if (va[i].dot(u) >= hi - tol) sa.push_back(i);
       for (int i = 0; i < int(vb.size()); ++i)
         if (vb[i].dot(u) <= lo2 + tol) sb.push_back(i);
-      const int cols = int(sa.size() - 1 + sb.size() - 1 + 1);
-      Eigen::Matrix<double, N, Eigen::Dynamic> sys(N, cols);
-      int c = 0;
-      for (std::size_t i = 1; i < sa.size(); ++i) sys.col(c++) = va[sa[i]] - va[sa[0]];
-      for (std::size_t i = 1; i < sb.size(); ++i) sys.col(c++) = -(vb[sb[i]] - vb[sb[0]]);
-      sys.col(c) = -u;
-      // pa + sum x_i (a-edges) = pb + sum y_j (b-edges) + delta u
-      const Eigen::VectorXd x = sys.completeOrthogonalDecomposition().solve(Vec<N>(vb[sb[0]] - va[sa[0]]));
+      // An orthonormal basis of each feature's directions (greedy Gram-Schmidt over its edges from the
+      // first vertex, within the feature only); with u at most N columns, so the solve needs no heap.
+      Eigen::Matrix<double, N, Eigen::Dynamic, 0, N, N> sys(N, 0);
+      auto add_span = [&](const std::vector<Vec<N>>& w, const std::vector<int>& set, double sign) {
+        const Eigen::Index first = sys.cols();
+        for (std::size_t i = 1; i < set.size() && sys.cols() < N - 1; ++i) {
+          Vec<N> e = sign * (w[set[i]] - w[set[0]]);
+          for (Eigen::Index c = first; c < sys.cols(); ++c) e -= e.dot(sys.col(c)) * sys.col(c);
+          const double len = e.norm();
+          if (len <= 1e-9 * scale) continue;
+          sys.conservativeResize(N, sys.cols() + 1);
+          sys.col(sys.cols() - 1) = e / len;
+        }
+      };
+      add_span(va, sa, 1.0);
+      const Eigen::Index from_a = sys.cols();
+      add_span(vb, sb, -1.0);
+      sys.conservativeResize(N, sys.cols() + 1);
+      sys.col(sys.cols() - 1) = -u;
+      // pa + sum x_i (a's directions) = pb + sum y_j (b's directions) + delta u
+      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, N, 1> x =
+          sys.colPivHouseholderQr().solve(Vec<N>(vb[sb[0]] - va[sa[0]]));
       Vec<N> pa = va[sa[0]];
-      for (std::size_t i = 1; i < sa.size(); ++i) pa += x[Eigen::Index(i - 1)] * (va[sa[i]] - va[sa[0]]);
+      for (Eigen::Index i = 0; i < from_a; ++i) pa += x[i] * sys.col(i);
       std::uint64_t id = 3;
       for (int i : sa) id = mix_id(id, std::uint64_t(i));
       for (int i : sb) id = mix_id(id, std::uint64_t(i) << 32);
