@@ -263,3 +263,35 @@ TEMPLATE_TEST_CASE("Degenerate configurations give finite answers", "[narrow]", 
   check_finite(touch);
   CHECK(touch.depth == Approx(0.0).margin(1e-12));
 }
+
+TEST_CASE("Feature ids persist while the same features touch, and tell the points apart", "[narrow]") {
+  const Shape<4> base = Shape<4>::box(Vec<4>::Constant(1.0));
+  const Shape<4> top = Shape<4>::box(Vec<4>::Constant(0.5));
+  const Shape<4> ground = Shape<4>::halfspace(Vec<4>::UnitY(), 0.0);
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+  for (const bool on_ground : {true, false}) {
+    auto contact = [&](const Vec<4>& shift, const Rotor<4>& r) {
+      const Vec<4> p = Vec<4>(0.1, on_ground ? 0.499 : 1.499, -0.1, 0.2) + shift;
+      return on_ground ? collide(ground, place<4>(Vec<4>::Zero()), top, place(p, r))
+                       : collide(base, place<4>(Vec<4>::Zero()), top, place(p, r));
+    };
+    const Manifold<4> first = contact(Vec<4>::Zero(), Rotor<4>::identity());
+    REQUIRE(first.count == 8);
+    std::vector<std::uint64_t> ids;
+    for (int i = 0; i < first.count; ++i) ids.push_back(first.points[i].id);
+    std::sort(ids.begin(), ids.end());
+    CHECK(std::adjacent_find(ids.begin(), ids.end()) == ids.end());  // 8 distinct ids
+    // Small motions within the ground plane (1 mm, a few mrad): the same corners touch, the same ids.
+    for (int t = 0; t < 20; ++t) {
+      Bivector<4> b;
+      b[1] = 3 * jitter(rng), b[2] = 3 * jitter(rng), b[5] = 3 * jitter(rng);
+      const Manifold<4> m = contact(Vec<4>(jitter(rng), 0.0, jitter(rng), jitter(rng)), exp(b));
+      REQUIRE(m.count == 8);
+      std::vector<std::uint64_t> now;
+      for (int i = 0; i < m.count; ++i) now.push_back(m.points[i].id);
+      std::sort(now.begin(), now.end());
+      CHECK(now == ids);
+    }
+  }
+}
