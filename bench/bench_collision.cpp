@@ -79,8 +79,27 @@ void BM_TesseractOnGround(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// The case a contact solver sees most: one tesseract resting on another, turned a little within the
+// contact plane (a face-to-face manifold of 8 points every query).
+void BM_TesseractOnTesseract(benchmark::State& state) {
+  const Shape<4> cube = Shape<4>::box(Vec<4>::Constant(0.5));
+  Bivector<4> turn;
+  turn[1] = 0.1;  // e02
+  turn[5] = 0.05;  // e23
+  const Transform<4> ta{}, tb{Vec<4>(0.05, 0.999, -0.03, 0.02), to_matrix(exp(turn))};
+  int points = 0;
+  for (auto _ : state) {
+    const Manifold<4> m = collide(cube, ta, cube, tb);
+    points = m.count;
+    benchmark::DoNotOptimize(m);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["points"] = points;
+}
+
 }  // namespace
 
+BENCHMARK(BM_TesseractOnTesseract);
 BENCHMARK(BM_BoxBox<3>)->Arg(80)->Arg(300);
 BENCHMARK(BM_BoxBox<4>)->Arg(80)->Arg(300);
 BENCHMARK(BM_PolytopeBox<3>)->Arg(80)->Arg(300);
