@@ -49,10 +49,10 @@ int slice(const Json& doc, const SliceOptions& o, const std::vector<double>& w, 
       for (const auto& corner : m.normals)
         for (const Vec<3>& n : corner) out.write_line(obj_numbers("vn", n));
       for (std::size_t c = 0; c < m.cells.size(); ++c) {
-        std::string line = "f";
-        for (int q = 0; q < 3; ++q)
-          line += " " + std::to_string(base_v + std::size_t(m.cells[c][std::size_t(q)])) + "//" +
-                  std::to_string(base_n + 3 * c + std::size_t(q));
+        char line[160];
+        std::snprintf(line, sizeof line, "f %zu//%zu %zu//%zu %zu//%zu", base_v + std::size_t(m.cells[c][0]), base_n + 3 * c,
+                      base_v + std::size_t(m.cells[c][1]), base_n + 3 * c + 1, base_v + std::size_t(m.cells[c][2]),
+                      base_n + 3 * c + 2);
         out.write_line(line);
       }
       base_v += m.vertices.size();

@@ -145,10 +145,29 @@ MeshSlicer<N>::MeshSlicer(const DisplayMesh<N>& mesh) {
     cell_edges_[uses[i].cell][uses[i].local] = int(edges_.size()) - 1;
   }
 
+  vertex_normals_.assign(nv, Vec<N>::Zero());
+  std::vector<char> has_normal(nv, 0);
+  normal_kind_.resize(cells_.size());
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    std::uint8_t kind = 0x80;
+    for (int j = 0; j < N; ++j) {
+      const std::size_t v = std::size_t(cells_[c][std::size_t(j)]);
+      if (!has_normal[v]) {
+        vertex_normals_[v] = normals_[c][std::size_t(j)];
+        has_normal[v] = 1;
+      }
+      if (normals_[c][std::size_t(j)] == vertex_normals_[v]) kind |= std::uint8_t(1u << j);
+      if (normals_[c][std::size_t(j)] != normals_[c][0]) kind &= std::uint8_t(0x7f);
+    }
+    normal_kind_[c] = kind;
+    any_smooth_ = any_smooth_ || !(kind & 0x80);
+  }
+
   dist_.resize(nv);
   above_.resize(nv);
   edge_vertex_.assign(edges_.size(), -1);
   edge_t_.resize(edges_.size());
+  edge_normal_.resize(edges_.size());
   (void)case_table<N>();
 }
 
@@ -185,6 +204,11 @@ void MeshSlicer<N>::slice(const Placement<N>& placement, const Hyperplane<N>& pl
   constexpr unsigned kAll = (1u << N) - 1u;
   const std::uint8_t* up = above_.data();
 
+  auto project = [&](const Vec<N>& n_body) -> Eigen::Matrix<double, M, 1> {
+    const Eigen::Matrix<double, M, 1> n = g * n_body;
+    const double len2 = n.squaredNorm();
+    return len2 > 1e-24 ? Eigen::Matrix<double, M, 1>(n * (1.0 / std::sqrt(len2))) : Eigen::Matrix<double, M, 1>::Zero();
+  };
   auto cut_vertex = [&](int e) {
     int& v = edge_vertex_[std::size_t(e)];
     if (v >= 0) return v;
@@ -200,7 +224,12 @@ void MeshSlicer<N>::slice(const Placement<N>& placement, const Hyperplane<N>& pl
     }
     v = int(out.vertices.size());
     out.vertices.push_back(g * x + g0);
-    edge_t_[std::size_t(e)] = i_below ? t : 1.0 - t;
+    const double ti = i_below ? t : 1.0 - t;
+    edge_t_[std::size_t(e)] = ti;
+    if (any_smooth_) {
+      const Vec<N>& ni = vertex_normals_[std::size_t(i)];
+      edge_normal_[std::size_t(e)] = project(ni + ti * (vertex_normals_[std::size_t(j)] - ni));
+    }
     touched_.push_back(e);
     return v;
   };
@@ -212,6 +241,9 @@ void MeshSlicer<N>::slice(const Placement<N>& placement, const Hyperplane<N>& pl
     for (int j = 0; j < N; ++j) code |= unsigned(up[cell[std::size_t(j)]]) << j;
     if (code == 0 || code == kAll) continue;
     const auto& cs = table.cases[code | (unsigned(flipped_[c] ^ left_handed) << N)];
+    const unsigned kind = normal_kind_[c];
+    Eigen::Matrix<double, M, 1> flat;
+    if (kind & 0x80u) flat = project(normals_[c][0]);
     for (int s = 0; s < cs.count; ++s) {
       std::array<int, M> tri;
       std::array<Eigen::Matrix<double, M, 1>, M> nrm;
@@ -219,12 +251,16 @@ void MeshSlicer<N>::slice(const Placement<N>& placement, const Hyperplane<N>& pl
         const int l = cs.simplex[std::size_t(s)][std::size_t(q)];
         const int e = cell_edges_[c][std::size_t(l)];
         tri[std::size_t(q)] = cut_vertex(e);
-        const double t = edge_t_[std::size_t(e)];
-        const Vec<N>& n0 = normals_[c][std::size_t(le[std::size_t(l)][0])];
-        const Vec<N>& n1 = normals_[c][std::size_t(le[std::size_t(l)][1])];
-        const Eigen::Matrix<double, M, 1> n = g * (n0 + t * (n1 - n0));
-        const double len = n.norm();
-        nrm[std::size_t(q)] = len > 1e-12 ? Eigen::Matrix<double, M, 1>(n / len) : Eigen::Matrix<double, M, 1>::Zero();
+        const int ca = le[std::size_t(l)][0], cb = le[std::size_t(l)][1];
+        if (kind & 0x80u) {
+          nrm[std::size_t(q)] = flat;
+        } else if ((kind >> ca) & (kind >> cb) & 1u) {
+          nrm[std::size_t(q)] = edge_normal_[std::size_t(e)];
+        } else {
+          const double t = edge_t_[std::size_t(e)];
+          const Vec<N>& n0 = normals_[c][std::size_t(ca)];
+          nrm[std::size_t(q)] = project(n0 + t * (normals_[c][std::size_t(cb)] - n0));
+        }
       }
       out.cells.push_back(tri);
       out.normals.push_back(nrm);

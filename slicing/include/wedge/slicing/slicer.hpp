@@ -59,11 +59,18 @@ class MeshSlicer {
   std::vector<std::array<int, kCellEdges>> cell_edges_;
   std::vector<std::array<int, 2>> edges_;              // (lower, higher) vertex index
   std::vector<std::array<Vec<N>, N>> normals_;         // in ascending corner order
+  // Shading shortcuts: bit j set if corner j's normal is its vertex's normal (smooth surfaces: the cut
+  // point's normal then depends on the edge alone and is made once per edge); bit 7 if all corners
+  // carry one normal (a flat cell: one projected normal per cell).
+  std::vector<std::uint8_t> normal_kind_;
+  std::vector<Vec<N>> vertex_normals_;
+  bool any_smooth_ = false;
   // Scratch.
   std::vector<double> dist_;
   std::vector<std::uint8_t> above_;
   std::vector<int> edge_vertex_;  // output vertex of a cut edge, -1 if not made yet
   std::vector<double> edge_t_;    // its parameter from edges_[e][0] to edges_[e][1]
+  std::vector<Eigen::Matrix<double, N - 1, 1>> edge_normal_;  // its normal from the vertex normals
   std::vector<int> touched_;
 };
 
