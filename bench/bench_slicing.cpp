@@ -88,6 +88,16 @@ struct DefaultScene {
     const SliceChain<4> chain = SliceChain<4>::axes({0.0});
     for (std::size_t i = 0; i < slicers.size(); ++i) slices[i] = slicers[i].slice(poses[i], chain);
   }
+  // The current slices seen from above and in front, over a ground grid.
+  render::FrameDesc frame() const {
+    render::FrameDesc f;
+    f.camera.eye = Eigen::Vector3d(3.0, 5.5, 8.5);
+    f.camera.target = Eigen::Vector3d(0.0, 3.0, 0.0);
+    f.ground.enabled = true;
+    f.ground.offset = 1.5;
+    for (std::size_t i = 0; i < slices.size(); ++i) f.meshes.push_back({&slices[i], render::palette_color(int(i))});
+    return f;
+  }
 };
 
 void BM_SliceDefaultScene(benchmark::State& state) {
@@ -107,17 +117,9 @@ void BM_RenderDefaultScene(benchmark::State& state) {
   DefaultScene scene;
   render::OffscreenContext context(1280, 720);
   render::Renderer renderer;
-  render::FrameDesc frame;
-  frame.camera.eye = Eigen::Vector3d(3.0, 5.5, 8.5);
-  frame.camera.target = Eigen::Vector3d(0.0, 3.0, 0.0);
-  frame.ground.enabled = true;
-  frame.ground.offset = 1.5;
   for (auto _ : state) {
     scene.slice();
-    frame.meshes.clear();
-    for (std::size_t i = 0; i < scene.slices.size(); ++i)
-      frame.meshes.push_back({&scene.slices[i], render::palette_color(int(i))});
-    renderer.draw(frame, 1280, 720);
+    renderer.draw(scene.frame(), 1280, 720);
     const std::vector<std::uint8_t> px = context.read_rgba();
     benchmark::DoNotOptimize(px.data());
   }
@@ -130,14 +132,7 @@ void BM_EncodePng(benchmark::State& state) {
   scene.slice();
   render::OffscreenContext context(1280, 720);
   render::Renderer renderer;
-  render::FrameDesc frame;
-  frame.camera.eye = Eigen::Vector3d(3.0, 5.5, 8.5);
-  frame.camera.target = Eigen::Vector3d(0.0, 3.0, 0.0);
-  frame.ground.enabled = true;
-  frame.ground.offset = 1.5;
-  for (std::size_t i = 0; i < scene.slices.size(); ++i)
-    frame.meshes.push_back({&scene.slices[i], render::palette_color(int(i))});
-  renderer.draw(frame, 1280, 720);
+  renderer.draw(scene.frame(), 1280, 720);
   const std::vector<std::uint8_t> px = context.read_rgba();
   const std::string path = (std::filesystem::temp_directory_path() / "wedge_bench_frame.png").string();
   for (auto _ : state) render::write_png(path, px, 1280, 720);

@@ -84,18 +84,23 @@ void main() {
 }
 )";
 
+// Throws with the info log if `status` of the shader or program is not set (then deletes it).
+template <class GetIv, class GetLog, class Delete>
+void require_ok(GLuint object, GLenum status, GetIv get_iv, GetLog get_log, Delete del, const char* what) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return;
+  char log[2048];
+  get_log(object, GLsizei(sizeof log), nullptr, log);
+  del(object);
+  throw Error(std::string("renderer: shader ") + what + " failed: " + log);
+}
+
 GLuint compile(GLenum type, const char* src) {
   const GLuint s = glCreateShader(type);
   glShaderSource(s, 1, &src, nullptr);
   glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    glDeleteShader(s);
-    throw Error(std::string("renderer: shader compilation failed: ") + log);
-  }
+  require_ok(s, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader, "compilation");
   return s;
 }
 
@@ -107,14 +112,7 @@ GLuint link(const char* vs, const char* fs) {
   glLinkProgram(p);
   glDeleteShader(v);
   glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetProgramInfoLog(p, sizeof log, nullptr, log);
-    glDeleteProgram(p);
-    throw Error(std::string("renderer: shader link failed: ") + log);
-  }
+  require_ok(p, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram, "link");
   return p;
 }
 
