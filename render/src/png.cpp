@@ -17,6 +17,7 @@ void write_png(const std::string& path, const std::vector<std::uint8_t>& rgba, i
   image.width = png_uint_32(width);
   image.height = png_uint_32(height);
   image.format = PNG_FORMAT_RGBA;
+  image.flags = PNG_IMAGE_FLAG_FAST;  // frames of a run: speed over size (several times faster to write)
   if (!png_image_write_to_file(&image, path.c_str(), 0, rgba.data(), width * 4, nullptr)) {
     const std::string why = image.message;
     png_image_free(&image);
