@@ -8,7 +8,6 @@
 // wrong formula (the continuous x0 + v0 t + g t^2 / 2 differs by h^2 g n / 2 ~ 5e-2 at n = 100).
 #include <catch2/catch.hpp>
 
-#include "cli_run.hpp"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,9 +21,11 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.hpp"
+
 namespace {
 
-using namespace cli_test;
+using namespace cli_runner;
 namespace fs = std::filesystem;
 using nlohmann::json;
 

@@ -8,9 +8,9 @@
 #include <set>
 #include <sstream>
 
-#include "cli_run.hpp"
+#include "cli_runner.hpp"
 
-using namespace cli_test;
+using namespace cli_runner;
 
 namespace {
 

@@ -1,5 +1,5 @@
 // wedge: the command-line front end of the engine. Dispatches to one verb per file (inertia.cpp,
-// simulate.cpp, collide.cpp); exit codes in cli_error.hpp.
+// simulate.cpp, collide.cpp, render.cpp, slice.cpp); exit codes in cli_error.hpp.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -20,9 +20,13 @@ int main(int argc, char** argv) {
   InertiaOptions inertia;
   SimulateOptions simulate;
   CollideOptions collide;
+  RenderOptions render;
+  SliceOptions slice;
   CLI::App* inertia_cmd = add_inertia_verb(app, inertia);
   CLI::App* simulate_cmd = add_simulate_verb(app, simulate);
   CLI::App* collide_cmd = add_collide_verb(app, collide);
+  CLI::App* render_cmd = add_render_verb(app, render);
+  CLI::App* slice_cmd = add_slice_verb(app, slice);
 
   try {
     app.parse(argc, argv);
@@ -39,6 +43,8 @@ int main(int argc, char** argv) {
     if (inertia_cmd->parsed()) return run_inertia(inertia);
     if (simulate_cmd->parsed()) return run_simulate(simulate);
     if (collide_cmd->parsed()) return run_collide(collide);
+    if (render_cmd->parsed()) return run_render(render);
+    if (slice_cmd->parsed()) return run_slice(slice);
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
   } catch (const Failure& e) {

@@ -37,6 +37,36 @@ double read_ranged(ObjectReader& obj, const std::string& key, double fallback, d
   return v;
 }
 
+std::array<double, 3> read_unit_rgb(const Node& n) {
+  const std::vector<double> v = n.numbers(3);
+  for (double c : v)
+    if (!(c >= 0.0 && c <= 1.0)) n.fail("colour components must be in [0, 1] (got " + n.json().dump() + ")");
+  return {v[0], v[1], v[2]};
+}
+
+SceneView read_view(const Node& node) {
+  ObjectReader obj(node);
+  SceneView view;
+  auto point = [](const Node& n) {
+    const Vec<3> p = n.vec<3>();
+    return std::array<double, 3>{p[0], p[1], p[2]};
+  };
+  if (auto n = obj.optional("eye")) view.eye = point(*n);
+  if (auto n = obj.optional("target")) view.target = point(*n);
+  if (auto n = obj.optional("fov")) {
+    view.fov_degrees = n->number();
+    if (!(*view.fov_degrees > 0.0 && *view.fov_degrees < 180.0))
+      n->fail("must be in (0, 180) degrees (got " + n->json().dump() + ")");
+  }
+  obj.finish();
+  if (view.eye && view.target) {
+    const double d2 = (*view.eye)[0] - (*view.target)[0], d1 = (*view.eye)[1] - (*view.target)[1],
+                 d3 = (*view.eye)[2] - (*view.target)[2];
+    if (d1 * d1 + d2 * d2 + d3 * d3 == 0.0) node.fail("\"eye\" and \"target\" must differ");
+  }
+  return view;
+}
+
 template <int N>
 SceneBody<N> read_body(const Node& node, int index) {
   ObjectReader obj(node);
@@ -77,6 +107,9 @@ SceneBody<N> read_body(const Node& node, int index) {
   material.friction = read_ranged(obj, "friction", 0.5, 0.0, HUGE_VAL, ">= 0");
   material.kinetic_friction = read_ranged(obj, "kinetic_friction", 0.4, 0.0, HUGE_VAL, ">= 0");
 
+  std::optional<std::array<double, 3>> color;
+  if (auto n = obj.optional("color")) color = read_unit_rgb(*n);
+
   const std::optional<Node> density_node = obj.optional("density");
   const std::optional<Node> mass_node = obj.optional("mass");
   obj.finish();
@@ -85,7 +118,7 @@ SceneBody<N> read_body(const Node& node, int index) {
     if (density_node || mass_node)
       (density_node ? *density_node : *mass_node).fail("a halfspace is infinite and has no mass or density");
     // local_center 0: the body frame is the halfspace's frame.
-    return SceneBody<N>{std::move(def), std::move(shape), 0.0, std::nullopt, material};
+    return SceneBody<N>{std::move(def), std::move(shape), 0.0, std::nullopt, material, color};
   }
   if (density_node && mass_node) mass_node->fail("give either \"density\" or \"mass\", not both");
   double density = 1.0;
@@ -112,7 +145,7 @@ SceneBody<N> read_body(const Node& node, int index) {
   def.mass = mp.mass;
   def.local_center = mp.center;
   def.inertia = mp.inertia;
-  return SceneBody<N>{std::move(def), std::move(shape), density, mp, material};
+  return SceneBody<N>{std::move(def), std::move(shape), density, mp, material, color};
 }
 
 }  // namespace
@@ -157,6 +190,7 @@ Scene<N> load_scene(const Json& doc, const std::string& file) {
       if (r < 1 || r > 1'000'000'000) n->fail("must be an integer >= 1 (got " + n->json().dump() + ")");
       scene.settings.rotor_repair_interval = int(r);
     }
+    if (auto n = obj.optional("view")) scene.view = read_view(*n);
     const Node bodies = obj.required("bodies");
     obj.finish();
 

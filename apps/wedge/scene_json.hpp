@@ -5,6 +5,7 @@
 // half_extents: expected 4 numbers, got 3".
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -38,6 +39,13 @@ struct SceneBody {
   double density = 1.0;                     // kg/m^n; 0 for a halfspace (no mass properties)
   std::optional<MassProperties<N>> mass;    // absent for a halfspace
   Material material;
+  std::optional<std::array<double, 3>> color;  // display colour (render, slice), RGB in [0, 1]
+};
+
+// The camera of `wedge render` ("view"); each part absent means "choose from the scene".
+struct SceneView {
+  std::optional<std::array<double, 3>> eye, target;  // m, in the 3D slice's coordinates
+  std::optional<double> fov_degrees;                 // vertical field of view, in (0, 180)
 };
 
 template <int N>
@@ -45,6 +53,7 @@ struct Scene {
   WorldSettings<N> settings;
   double timestep = kDefaultTimestep;  // s
   std::vector<SceneBody<N>> bodies;
+  SceneView view;
 
   // A world holding every body, in file order (throws Failure naming the file and body on error).
   World<N> make_world(const std::string& file) const;

@@ -5,39 +5,17 @@
 // line {"state_hash": "<16 hex digits>"} carries World::state_hash() after the last step.
 // Formats: docs/scene-format.md.
 #include <CLI/CLI.hpp>
-#include <cerrno>
 #include <cinttypes>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 #include "json_out.hpp"
 #include "scene_json.hpp"
+#include "step_options.hpp"
 #include "verbs.hpp"
 
 namespace wedge::cli {
 
 namespace {
-
-// Strict number parsing for option values: the whole text must be a number.
-bool parse_int64(const std::string& text, std::int64_t& out) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
-  if (errno != 0 || end != text.c_str() + text.size()) return false;
-  out = v;
-  return true;
-}
-bool parse_double(const std::string& text, double& out) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (errno == ERANGE || end != text.c_str() + text.size()) return false;
-  out = v;
-  return true;
-}
 
 template <int N>
 OutJson state_line(const World<N>& world) {
@@ -65,25 +43,8 @@ OutJson state_line(const World<N>& world) {
   return line;
 }
 
-// The first body whose state is not finite, or -1.
 template <int N>
-int first_non_finite_body(const World<N>& world) {
-  for (int i = 0; i < world.body_count(); ++i) {
-    const Body<N>& b = world.body(BodyId{std::uint32_t(i)});
-    if (!b.center.allFinite() || !b.rotor.all_finite() || !b.velocity.allFinite() ||
-        !b.angular_velocity.all_finite())
-      return i;
-  }
-  return -1;
-}
-
-struct Run {
-  std::int64_t steps = 0, every = 1;
-  std::optional<double> dt;
-};
-
-template <int N>
-int simulate(const Json& doc, const SimulateOptions& options, const Run& run) {
+int simulate(const Json& doc, const SimulateOptions& options, const StepOptions& run) {
   const std::string& file = options.scene;
   const Scene<N> scene = load_scene<N>(doc, file);
   const double h = run.dt ? *run.dt : scene.timestep;
@@ -99,11 +60,7 @@ int simulate(const Json& doc, const SimulateOptions& options, const Run& run) {
 
   emit(state_line(world));
   for (std::int64_t s = 1; s <= run.steps; ++s) {
-    world.step(h);
-    const int bad = first_non_finite_body(world);
-    if (bad >= 0)
-      throw Failure(file + ": the simulation produced a non-finite value at step " + std::to_string(s) +
-                    " (body '" + world.name(BodyId{std::uint32_t(bad)}) + "'; step size too large?)");
+    checked_step(world, h, file);
     if (s % run.every == 0) emit(state_line(world));
   }
   if (options.hash) {
@@ -139,19 +96,7 @@ CLI::App* add_simulate_verb(CLI::App& app, SimulateOptions& o) {
 }
 
 int run_simulate(const SimulateOptions& o) {
-  const std::string prefix = o.scene + ": ";
-  Run run;
-  if (o.steps.empty()) throw Failure(prefix + "--steps N is required");
-  if (!parse_int64(o.steps, run.steps) || run.steps < 0)
-    throw Failure(prefix + "--steps must be an integer >= 0 (got '" + o.steps + "')");
-  if (!o.every.empty() && (!parse_int64(o.every, run.every) || run.every < 1))
-    throw Failure(prefix + "--every must be an integer >= 1 (got '" + o.every + "')");
-  if (!o.dt.empty()) {
-    double dt = 0.0;
-    if (!parse_double(o.dt, dt) || !std::isfinite(dt) || !(dt > 0.0))
-      throw Failure(prefix + "--dt must be a finite number > 0 (got '" + o.dt + "')");
-    run.dt = dt;
-  }
+  const StepOptions run = parse_step_options(o.scene, o.steps, o.dt, o.every);
   const Json doc = read_json_file(o.scene);
   const int n = read_dim(doc, o.scene);
   return with_dim(n, [&](auto dim) { return simulate<decltype(dim)::value>(doc, o, run); });

@@ -37,4 +37,22 @@ struct CollideOptions {
 CLI::App* add_collide_verb(CLI::App& app, CollideOptions& options);
 int run_collide(const CollideOptions& options);
 
+// wedge render SCENE.json --steps N [--every K] [--dt H] [--w W] --out DIR [--size WxH] [--subdivisions S]
+struct RenderOptions {
+  std::string scene;
+  std::string steps, dt, every, w, size, subdivisions;
+  std::string out;
+};
+CLI::App* add_render_verb(CLI::App& app, RenderOptions& options);
+int run_render(const RenderOptions& options);
+
+// wedge slice SCENE.json [--w W] --obj FILE [--subdivisions S]
+struct SliceOptions {
+  std::string scene;
+  std::string w, subdivisions;
+  std::string obj;
+};
+CLI::App* add_slice_verb(CLI::App& app, SliceOptions& options);
+int run_slice(const SliceOptions& options);
+
 }  // namespace wedge::cli

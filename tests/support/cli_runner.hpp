@@ -1,13 +1,13 @@
-// Runs the real `wedge` program the way a user does, for the CLI tests: a fresh temporary folder per test
-// case, input files written into it, the binary run through the shell there, and stdout, stderr and the
+// Running the `wedge` program as a user would, for the CLI tests: a fresh temporary folder per test
+// case, input files written into it, the binary run through the shell there, stdout, stderr and the
 // exit code captured.
 #pragma once
 
+#include <catch2/catch.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
-namespace cli_test {
+namespace cli_runner {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kWedge = WEDGE_BINARY_DIR "/apps/wedge/wedge";
+inline const std::string kWedge = WEDGE_BINARY_DIR "/apps/wedge/wedge";
 
 struct Result {
   int code = -1;
@@ -84,4 +84,4 @@ class TempDir {
   fs::path path_;
 };
 
-}  // namespace cli_test
+}  // namespace cli_runner
