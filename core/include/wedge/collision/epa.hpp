@@ -67,6 +67,12 @@ struct EpaWorkspace {
 
 namespace detail {
 
+// Barycentric round-off allowed when deciding that a facet holds the origin's projection.
+inline constexpr double kHoldsProjection = 1e-12;
+// Facets whose unit normals and distances (relative to the size of A - B) agree to this are coplanar:
+// round-off in normals computed from different O(1) vertex triples is ~1e-15.
+inline constexpr double kCoplanar = 1e-10;
+
 // The outward plane of the facet through p[0..N): false if the points are affinely dependent.
 template <int N>
 bool facet_plane(const Vec<N>* const* p, const Vec<N>& interior, Vec<N>& normal, double& distance) {
@@ -221,10 +227,12 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
   for (const Vec<N>& p : ws.w) interior += p;
   interior /= double(N + 1);
   const double tol_abs = settings.tolerance * scale;
-  // A facet is removed when the new point is beyond its plane by more than half the tolerance: every
-  // new facet is then non-degenerate (its apex is that far off the ridge's facet plane), while the
-  // closest facet, which the point passes by more than the tolerance, is always removed.
-  const double visible_eps = 0.5 * tol_abs;
+  // A facet is removed when the new point is beyond its plane by more than visible_eps: every new facet
+  // is then non-degenerate (its apex is that far off the ridge's facet plane, 1e-3 above the flatness
+  // threshold), and the polytope stays convex to that (a larger value lets round shapes grow concave
+  // and then fold over). The closest facet, which the point passes by more than the tolerance, is
+  // always removed.
+  const double visible_eps = std::min(0.5 * tol_abs, 1e3 * detail::kAffineDegenerate * scale);
   const auto make_facet = [&](const std::array<int, N>& v) {
     typename EpaWorkspace<N>::Facet f{v, Vec<N>::Unit(0), 0.0};
     const Vec<N>* p[N] = {};
@@ -300,7 +308,28 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
     res.ok = false;
     return res;
   }
-  const typename EpaWorkspace<N>::Facet& fc = ws.facets[closest];
+  // The nearest face of A - B may be tiled by several coplanar facets (always for box faces), and the
+  // closest one need not hold the origin's projection: take the first coplanar one (same plane to
+  // kCoplanar) that does, so that point_a - point_b = depth * normal.
+  int chosen = closest;
+  const Vec<N> n_closest = ws.facets[closest].normal;
+  const double d_closest = ws.facets[closest].distance;
+  for (int f = 0; f < int(ws.facets.size()); ++f) {
+    const typename EpaWorkspace<N>::Facet& g = ws.facets[f];
+    if (!((g.normal - n_closest).norm() <= detail::kCoplanar && std::abs(g.distance - d_closest) <= detail::kCoplanar * scale))
+      continue;
+    const Vec<N>* p[N] = {};
+    for (int i = 0; i < N; ++i) p[i] = &ws.w[g.v[i]];
+    double lambda[N];
+    if (!detail::affine_closest<N>(p, N, lambda)) continue;
+    bool holds = true;
+    for (int i = 0; i < N; ++i) holds = holds && lambda[i] >= -detail::kHoldsProjection;
+    if (holds) {
+      chosen = f;
+      break;
+    }
+  }
+  const typename EpaWorkspace<N>::Facet& fc = ws.facets[chosen];
   res.depth = std::max(fc.distance, 0.0);
   res.normal = fc.normal;
   detail::epa_witnesses<N>(ws, fc.v.data(), N, res);
