@@ -91,8 +91,8 @@ TEMPLATE_TEST_CASE("gjk: random polytopes against the Minkowski hull (distance, 
     overlapping += status < 0;
   }
   INFO("separated " << separated << ", overlapping " << overlapping);
-  CHECK(separated >= trials / 5);
-  CHECK(overlapping >= trials / 5);
+  CHECK(separated >= trials / 8);  // both outcomes covered
+  CHECK(overlapping >= trials / 8);
 }
 
 TEMPLATE_TEST_CASE("gjk: rotated boxes against the hull of their corner differences", "[gjk]", D2, D3, D4, D5, D6) {

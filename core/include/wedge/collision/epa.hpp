@@ -36,6 +36,8 @@ struct EpaSettings {
   // the depth is exact to tolerance * scale. Polytopes stop exactly (the support repeats a vertex);
   // round shapes converge linearly and may need a looser tolerance or more iterations.
   double tolerance = 1e-10;
+  // Storage cap (a 6D ball needs ~1e5 facets for 1000 iterations); reaching it ends the run, ok = false.
+  int max_facets = 200000;
 };
 
 template <int N>
@@ -250,13 +252,22 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
   }
 
   int closest = 0;
+  // In exact arithmetic the closest distance never decreases. If round-off folds the polytope over
+  // (seen with round shapes in 5D/6D) it does: the run stops there with the last sound facet.
+  typename EpaWorkspace<N>::Facet last_sound = ws.facets[0];
+  bool broken = false;
   while (true) {
     closest = 0;
     for (int f = 1; f < int(ws.facets.size()); ++f)
       if (ws.facets[f].distance < ws.facets[closest].distance) closest = f;
     const typename EpaWorkspace<N>::Facet& fc = ws.facets[closest];
     if (!std::isfinite(fc.distance)) break;  // only degenerate facets left (not expected)
-    if (res.iterations >= settings.max_iterations) break;
+    if (res.iterations > 0 && fc.distance < last_sound.distance - tol_abs) {
+      broken = true;
+      break;
+    }
+    last_sound = fc;
+    if (res.iterations >= settings.max_iterations || int(ws.facets.size()) > settings.max_facets) break;
     ++res.iterations;
     Vec<N> pa, pb;
     support(fc.normal, pa, pb);
@@ -303,6 +314,13 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
     if (ws.facets.empty()) break;  // not expected: a closed hull always has a horizon
   }
 
+  if (broken) {
+    res.ok = false;
+    res.depth = std::max(last_sound.distance, 0.0);
+    res.normal = last_sound.normal;
+    detail::epa_witnesses<N>(ws, last_sound.v.data(), N, res);
+    return res;
+  }
   if (ws.facets.empty() || !std::isfinite(ws.facets[closest].distance)) {
     // Broken polytope (round-off on degenerate input): the best we can say is "touching".
     res.ok = false;
@@ -311,7 +329,7 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
   // The nearest face of A - B may be tiled by several coplanar facets (always for box faces), and the
   // closest one need not hold the origin's projection: take the first coplanar one (same plane to
   // kCoplanar) that does, so that point_a - point_b = depth * normal.
-  int chosen = closest;
+  int chosen = -1;
   const Vec<N> n_closest = ws.facets[closest].normal;
   const double d_closest = ws.facets[closest].distance;
   for (int f = 0; f < int(ws.facets.size()); ++f) {
@@ -328,6 +346,13 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
       chosen = f;
       break;
     }
+  }
+  if (chosen < 0) {
+    // No facet holds the projection: round-off has made the polytope non-convex there (seen with
+    // round shapes from 5D on). Depth and normal are still the closest facet's; the witnesses are
+    // clamped to it and do not satisfy point_a - point_b = depth * normal, so report ok = false.
+    res.ok = false;
+    chosen = closest;
   }
   const typename EpaWorkspace<N>::Facet& fc = ws.facets[chosen];
   res.depth = std::max(fc.distance, 0.0);
