@@ -70,9 +70,11 @@ void set_rates(benchmark::State& state, double gjk_iterations, double epa_iterat
   if (epa_iterations > 0) state.counters["epa_iterations"] = epa_iterations / items;
 }
 
+// spacing 1.05: separated pairs (distance and closest points); 0.1: overlapping pairs (GJK stops at the
+// first simplex around the origin).
 template <int N>
-void BM_GjkSeparated(benchmark::State& state) {
-  const auto pairs = make_pairs<N>(1.05, 42 + N);
+void gjk_pairs(benchmark::State& state, double spacing, unsigned seed) {
+  const auto pairs = make_pairs<N>(spacing, seed);
   double iterations = 0;
   for (auto _ : state)
     for (const auto& [a, b] : pairs) {
@@ -82,18 +84,13 @@ void BM_GjkSeparated(benchmark::State& state) {
     }
   set_rates(state, iterations, 0);
 }
-
+template <int N>
+void BM_GjkSeparated(benchmark::State& state) {
+  gjk_pairs<N>(state, 1.05, 42 + N);
+}
 template <int N>
 void BM_GjkOverlapping(benchmark::State& state) {
-  const auto pairs = make_pairs<N>(0.1, 4242 + N);
-  double iterations = 0;
-  for (auto _ : state)
-    for (const auto& [a, b] : pairs) {
-      const auto r = gjk<N>(a, b, Vec<N>(b.centre - a.centre));
-      iterations += r.iterations;
-      benchmark::DoNotOptimize(r.intersecting);
-    }
-  set_rates(state, iterations, 0);
+  gjk_pairs<N>(state, 0.1, 4242 + N);
 }
 
 template <int N>

@@ -97,15 +97,8 @@ TEMPLATE_TEST_CASE("epa: overlapping rotated boxes against the depth of the Mink
   const int trials = N <= 4 ? 30 : (N == 5 ? 10 : 20);
   int used = 0;
   for (int t = 0; t < trials; ++t) {
-    BoxSupport<N> a, b;
-    a.rotation = oracle::rotation<N>(rng);
-    b.rotation = oracle::rotation<N>(rng);
-    for (int i = 0; i < N; ++i) {
-      a.half[i] = 0.2 + u(rng);
-      b.half[i] = 0.2 + u(rng);
-    }
-    a.centre = 0.3 * oracle::gaussian<N>(rng);
-    b.centre = a.centre + 0.6 * u(rng) * oracle::unit<N>(rng);
+    const BoxSupport<N> a = oracle::random_box<N>(rng, Vec<N>(0.3 * oracle::gaussian<N>(rng)));
+    const BoxSupport<N> b = oracle::random_box<N>(rng, Vec<N>(a.centre + 0.6 * u(rng) * oracle::unit<N>(rng)));
     const double depth = N == 6 ? oracle::box_sat<N>(a, b) : NAN;
     used += check_depth<N>(a, b, a.corners(), b.corners(), Vec<N>(b.centre - a.centre), depth);
   }

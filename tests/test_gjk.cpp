@@ -105,14 +105,8 @@ TEMPLATE_TEST_CASE("gjk: rotated boxes against the hull of their corner differen
   const int trials = N <= 4 ? 40 : (N == 5 ? 12 : 30);
   int separated = 0, overlapping = 0;
   for (int t = 0; t < trials; ++t) {
-    BoxSupport<N> a, b;
-    a.rotation = oracle::rotation<N>(rng);
-    b.rotation = oracle::rotation<N>(rng);
-    for (int i = 0; i < N; ++i) {
-      a.half[i] = 0.2 + u(rng);
-      b.half[i] = 0.2 + u(rng);
-    }
-    b.centre = (0.5 + 2.5 * u(rng)) * oracle::unit<N>(rng);
+    const BoxSupport<N> a = oracle::random_box<N>(rng, Vec<N>::Zero());
+    const BoxSupport<N> b = oracle::random_box<N>(rng, Vec<N>((0.5 + 2.5 * u(rng)) * oracle::unit<N>(rng)));
     int status = 0;
     if constexpr (N <= 5) {
       status = check_against_hull<N>(a, b, a.corners(), b.corners(), Vec<N>(b.centre - a.centre), true);

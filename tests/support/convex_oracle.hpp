@@ -103,6 +103,17 @@ struct BoxSupport {
   }
 };
 
+// A box with a random orientation and half extents in [0.2, 1.2].
+template <int N>
+BoxSupport<N> random_box(std::mt19937_64& rng, const Vec<N>& centre) {
+  std::uniform_real_distribution<double> u(0.2, 1.2);
+  BoxSupport<N> b;
+  b.centre = centre;
+  b.rotation = rotation<N>(rng);
+  for (int i = 0; i < N; ++i) b.half[i] = u(rng);
+  return b;
+}
+
 template <int N>
 struct BallSupport {
   Vec<N> centre = Vec<N>::Zero();
