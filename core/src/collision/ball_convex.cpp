@@ -74,15 +74,9 @@ Manifold<N> ball_convex(const Shape<N>& a, const Transform<N>& ta, const Shape<N
   const Vec<N> x = tb.apply_inverse(ta.position);  // the ball's centre in b's frame
   Closest<N> c;
   switch (kind_of(b)) {
-    case ShapeKind::Box: {
-      const Vec<N>& h = b.template as<shapes::Box<N>>().half_extents;
-      std::vector<ProductFactor> f;
-      for (int i = 0; i < N; ++i) f.push_back(ProductFactor::interval(i, h[i]));
-      c = closest_on_product<N>(f, x);
-      break;
-    }
+    case ShapeKind::Box:
     case ShapeKind::RoundProduct:
-      c = closest_on_product<N>(b.template as<shapes::RoundProduct<N>>().factors, x);
+      c = closest_on_product<N>(product_factors(b), x);
       break;
     default:
       c = closest_on_polytope(b, x);

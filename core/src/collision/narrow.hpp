@@ -45,6 +45,9 @@ struct SupportPoint {
 };
 template <int N>
 void local_support_set(const Shape<N>& shape, const Vec<N>& d, double tolerance, std::vector<SupportPoint<N>>& out);
+// A box or round product as its list of ball and interval factors (a box: N intervals); no copy.
+template <int N>
+const std::vector<ProductFactor>& product_factors(const Shape<N>& shape);
 // Whether the body-frame point lies in the shape grown by `tolerance` (m).
 template <int N>
 bool local_contains(const Shape<N>& shape, const Vec<N>& x, double tolerance);

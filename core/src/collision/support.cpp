@@ -8,16 +8,6 @@
 namespace wedge::collision {
 namespace {
 
-// Ball factors and intervals read from a box or round product as one list.
-template <int N>
-std::vector<ProductFactor> factors_of(const Shape<N>& shape) {
-  if (shape.template is<shapes::RoundProduct<N>>()) return shape.template as<shapes::RoundProduct<N>>().factors;
-  std::vector<ProductFactor> f;
-  const Vec<N>& h = shape.template as<shapes::Box<N>>().half_extents;
-  for (int i = 0; i < N; ++i) f.push_back(ProductFactor::interval(i, h[i]));
-  return f;
-}
-
 template <int N>
 Vec<N> product_support(const std::vector<ProductFactor>& factors, const Vec<N>& d) {
   Vec<N> p = Vec<N>::Zero();
@@ -44,6 +34,21 @@ const std::vector<Vec<N>>& hull_vertices(const Shape<N>& shape) {
 }
 
 }  // namespace
+
+template <int N>
+const std::vector<ProductFactor>& product_factors(const Shape<N>& shape) {
+  if (shape.template is<shapes::RoundProduct<N>>()) return shape.template as<shapes::RoundProduct<N>>().factors;
+  // A box is N intervals. The list is kept per thread and only its sizes change, so the query allocates
+  // nothing after the first call.
+  thread_local std::vector<ProductFactor> box;
+  if (box.size() != std::size_t(N)) {
+    box.clear();
+    for (int i = 0; i < N; ++i) box.push_back(ProductFactor::interval(i, 0.0));
+  }
+  const Vec<N>& h = shape.template as<shapes::Box<N>>().half_extents;
+  for (int i = 0; i < N; ++i) box[i].size = h[i];
+  return box;
+}
 
 template <int N>
 Vec<N> local_support(const Shape<N>& shape, const Vec<N>& d) {
@@ -96,15 +101,16 @@ void local_support_set(const Shape<N>& shape, const Vec<N>& d, double tolerance,
   }
   // Box or round product: the Cartesian product of each factor's extreme points along u. A factor
   // counts as orthogonal to u when tilting it over its whole size moves it by less than the tolerance.
-  const std::vector<ProductFactor> factors = factors_of(shape);
+  const std::vector<ProductFactor>& factors = product_factors(shape);
   out.push_back({Vec<N>::Zero(), 0});
   std::uint32_t radix = 1;
-  std::vector<SupportPoint<N>> next;
+  thread_local std::vector<SupportPoint<N>> next;
+  thread_local std::vector<Vec<N>> choices;  // this factor's contribution on its own axes
   for (const ProductFactor& f : factors) {
     double len2 = 0.0;
     for (int a : f.axes) len2 += u[a] * u[a];
     const bool flat = std::sqrt(len2) * f.size < tolerance;
-    std::vector<Vec<N>> choices;  // this factor's contribution on its own axes
+    choices.clear();
     if (!flat) {
       Vec<N> du = Vec<N>::Zero();
       for (int a : f.axes) du[a] = u[a];
@@ -142,7 +148,7 @@ bool local_contains(const Shape<N>& shape, const Vec<N>& x, double tol) {
       return x.norm() <= shape.template as<shapes::Ball<N>>().radius + tol;
     case ShapeKind::Box:
     case ShapeKind::RoundProduct: {
-      for (const ProductFactor& f : factors_of(shape)) {
+      for (const ProductFactor& f : product_factors(shape)) {
         double len2 = 0.0;
         for (int a : f.axes) len2 += x[a] * x[a];
         if (std::sqrt(len2) > f.size + tol) return false;
@@ -188,7 +194,8 @@ double shape_scale(const Shape<N>& shape) {
   template Vec<N> local_support<N>(const Shape<N>&, const Vec<N>&);                                            \
   template void local_support_set<N>(const Shape<N>&, const Vec<N>&, double, std::vector<SupportPoint<N>>&);   \
   template bool local_contains<N>(const Shape<N>&, const Vec<N>&, double);                                     \
-  template double shape_scale<N>(const Shape<N>&);
+  template double shape_scale<N>(const Shape<N>&);                                                             \
+  template const std::vector<ProductFactor>& product_factors<N>(const Shape<N>&);
 WEDGE_INSTANTIATE(2)
 WEDGE_INSTANTIATE(3)
 WEDGE_INSTANTIATE(4)
