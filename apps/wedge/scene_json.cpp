@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "wedge/error.hpp"
@@ -65,6 +66,32 @@ SceneView read_view(const Node& node) {
     if (d1 * d1 + d2 * d2 + d3 * d3 == 0.0) node.fail("\"eye\" and \"target\" must differ");
   }
   return view;
+}
+
+int read_count(ObjectReader& obj, const std::string& key, int fallback) {
+  const std::optional<Node> n = obj.optional(key);
+  if (!n) return fallback;
+  const std::int64_t v = n->integer();
+  if (v < 0 || v > 1000) n->fail("must be an integer in 0..1000 (got " + n->json().dump() + ")");
+  return int(v);
+}
+
+// "contact": {..}: the fields of wedge::ContactSettings, each optional (docs/scene-format.md).
+ContactSettings read_contact_settings(const Node& node) {
+  ObjectReader obj(node);
+  ContactSettings c;
+  c.contact_margin = read_ranged(obj, "contact_margin", c.contact_margin, 0.0, 1e3, "in [0, 1000] m");
+  c.collision_iterations = read_count(obj, "collision_iterations", c.collision_iterations);
+  c.contact_iterations = read_count(obj, "contact_iterations", c.contact_iterations);
+  c.shock_iterations = read_count(obj, "shock_iterations", c.shock_iterations);
+  c.linear_slop = read_ranged(obj, "linear_slop", c.linear_slop, 0.0, 1e3, "in [0, 1000] m");
+  c.position_correction = read_ranged(obj, "position_correction", c.position_correction, 1e-9, 1.0, "in (0, 1]");
+  c.position_iterations = read_count(obj, "position_iterations", c.position_iterations);
+  c.allow_sleep = obj.boolean_or("allow_sleep", c.allow_sleep);
+  c.sleep_linear_speed = read_ranged(obj, "sleep_linear_speed", c.sleep_linear_speed, 0.0, 1e6, ">= 0 m/s");
+  c.time_to_sleep = read_ranged(obj, "time_to_sleep", c.time_to_sleep, 0.0, 1e9, ">= 0 s");
+  obj.finish();
+  return c;
 }
 
 template <int N>
@@ -190,6 +217,7 @@ Scene<N> load_scene(const Json& doc, const std::string& file) {
       if (r < 1 || r > 1'000'000'000) n->fail("must be an integer >= 1 (got " + n->json().dump() + ")");
       scene.settings.rotor_repair_interval = int(r);
     }
+    if (auto n = obj.optional("contact")) scene.settings.contact = read_contact_settings(*n);
     if (auto n = obj.optional("view")) scene.view = read_view(*n);
     const Node bodies = obj.required("bodies");
     obj.finish();
@@ -209,7 +237,12 @@ template <int N>
 World<N> Scene<N>::make_world(const std::string& file) const {
   World<N> world = with_file_context(file, "", [&] { return World<N>(settings); });
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    with_file_context(file, index_path("bodies", i), [&] { world.add_body(bodies[i].def); });
+    with_file_context(file, index_path("bodies", i), [&] {
+      BodyDef<N> def = bodies[i].def;
+      def.shape = std::make_shared<const Shape<N>>(bodies[i].shape);
+      def.material = bodies[i].material;
+      world.add_body(def);
+    });
   return world;
 }
 

@@ -1,4 +1,4 @@
-// Scene files (JSON) -> World<N> plus the per-body shape and material data the world does not hold yet.
+// Scene files (JSON) -> World<N>, keeping each body's shape, density and display colour for the tools.
 // The schema is in docs/scene-format.md. Everything is checked while loading: unknown keys, types,
 // sizes, ranges, finiteness, rotors, meshes (via the core's wedge::Error). Every problem comes out as a
 // Failure whose message starts with the file name and the JSON path: "scene.json: bodies[2].shape.
@@ -25,12 +25,6 @@ namespace wedge::cli {
 inline constexpr int kMinDim = 2, kMaxDim = 6;
 inline constexpr double kDefaultTimestep = 1.0 / 120.0;
 
-// Contact material, stored and validated; used once contacts exist.
-struct Material {
-  double restitution = 0.0;       // [0, 1]
-  double friction = 0.5;          // static friction coefficient, >= 0
-  double kinetic_friction = 0.4;  // >= 0
-};
 
 template <int N>
 struct SceneBody {

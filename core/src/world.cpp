@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "contact/contact_system.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
@@ -77,35 +78,136 @@ Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, doub
   return w2;
 }
 
+namespace {
+void check_contact_settings(const ContactSettings& c) {
+  auto finite_nonneg = [](double x) { return std::isfinite(x) && x >= 0.0; };
+  if (!finite_nonneg(c.contact_margin)) throw Error("contact.contact_margin must be finite and >= 0 (m)");
+  if (c.collision_iterations < 0 || c.contact_iterations < 0 || c.shock_iterations < 0 || c.position_iterations < 0)
+    throw Error("contact iteration counts must be >= 0");
+  if (!finite_nonneg(c.linear_slop)) throw Error("contact.linear_slop must be finite and >= 0 (m)");
+  if (!(c.position_correction > 0.0 && c.position_correction <= 1.0))
+    throw Error("contact.position_correction must be in (0, 1]");
+  if (!finite_nonneg(c.sleep_linear_speed) || !finite_nonneg(c.time_to_sleep))
+    throw Error("contact.sleep_linear_speed and time_to_sleep must be finite and >= 0");
+}
+
+void check_material(const Material& m, const std::string& who) {
+  if (!(m.restitution >= 0.0 && m.restitution <= 1.0))
+    throw Error(who + ": restitution must be in [0, 1] (got " + std::to_string(m.restitution) + ")");
+  if (!(m.friction >= 0.0) || !std::isfinite(m.friction) || !(m.kinetic_friction >= 0.0) ||
+      !std::isfinite(m.kinetic_friction))
+    throw Error(who + ": friction coefficients must be finite and >= 0");
+}
+}  // namespace
+
 template <int N>
-World<N>::World(const WorldSettings<N>& settings) : settings_(settings) {
+World<N>::World(const WorldSettings<N>& settings)
+    : settings_(settings), contact_(std::make_unique<contact::ContactState<N>>()) {
   if (!settings_.gravity.allFinite()) throw Error("gravity must be finite");
   if (settings_.rotor_repair_interval < 1) throw Error("rotor_repair_interval must be >= 1");
+  check_contact_settings(settings_.contact);
+}
+
+template <int N>
+World<N>::~World() = default;
+template <int N>
+World<N>::World(World&&) noexcept = default;
+template <int N>
+World<N>& World<N>::operator=(World&&) noexcept = default;
+template <int N>
+World<N>::World(const World& o)
+    : settings_(o.settings_),
+      bodies_(o.bodies_),
+      names_(o.names_),
+      shapes_(o.shapes_),
+      materials_(o.materials_),
+      contact_(std::make_unique<contact::ContactState<N>>(*o.contact_)),
+      steps_(o.steps_),
+      time_(o.time_) {}
+template <int N>
+World<N>& World<N>::operator=(const World& o) {
+  if (this != &o) *this = World(o);
+  return *this;
 }
 
 template <int N>
 BodyId World<N>::add_body(const BodyDef<N>& def) {
+  const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
+  if (def.shape && !def.shape->bounded() && def.type != BodyType::Static)
+    throw Error(who + ": a half-space can only be the shape of a static body");
+  check_material(def.material, who);
   bodies_.push_back(make_body(def));
   names_.push_back(def.name);
+  shapes_.push_back(def.shape);
+  materials_.push_back(def.material);
+  contact::add_body(*contact_, bodies_, shapes_, int(bodies_.size() - 1));
   return BodyId{std::uint32_t(bodies_.size() - 1)};
 }
 
 template <int N>
+bool World<N>::is_awake(BodyId id) const {
+  return contact_->awake[id.index] != 0;
+}
+template <int N>
+void World<N>::wake(BodyId id) {
+  contact_->wake_island(int(id.index));
+}
+
+template <int N>
+void World<N>::move_kinematic(BodyId id, const Vec<N>& position, const Rotor<N>& rotor, double h) {
+  Body<N>& b = bodies_[id.index];
+  if (b.type != BodyType::Kinematic) throw Error("move_kinematic: body '" + names_[id.index] + "' is not kinematic");
+  if (!(h > 0.0) || !position.allFinite() || !rotor.all_finite()) throw Error("move_kinematic: invalid target");
+  const Rotor<N> target = repair(rotor);
+  // R' = exp(-h w / 2) R  =>  w = -2 log(R' ~R) / h; the centre follows the body frame.
+  b.angular_velocity = log<N>(target * reverse(b.rotor)) * (-2.0 / h);
+  b.velocity = (position + rotate(target, b.local_center) - b.center) / h;
+}
+
+template <int N>
+const std::vector<ContactBeginEvent<N>>& World<N>::contact_begin_events() const {
+  return contact_->begin_events;
+}
+template <int N>
+const std::vector<ContactEndEvent>& World<N>::contact_end_events() const {
+  return contact_->end_events;
+}
+template <int N>
+std::vector<ContactInfo<N>> World<N>::contacts() const {
+  std::vector<ContactInfo<N>> out;
+  for (const contact::Pair<N>& p : contact_->pairs) {
+    if (p.manifold.count == 0) continue;
+    ContactInfo<N> info;
+    info.a = BodyId{p.a};
+    info.b = BodyId{p.b};
+    info.manifold = p.manifold;
+    info.normal_impulse = p.normal_impulse;
+    info.touching = p.touching;
+    out.push_back(info);
+  }
+  return out;
+}
+
+template <int N>
 void World<N>::apply_force(BodyId id, const Vec<N>& f) {
+  if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   bodies_[id.index].force += f;
 }
 template <int N>
 void World<N>::apply_force_at(BodyId id, const Vec<N>& f, const Vec<N>& p) {
+  if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   b.force += f;
   b.torque += outer<N>(p - b.center, f);
 }
 template <int N>
 void World<N>::apply_torque(BodyId id, const Bivector<N>& t) {
+  if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   bodies_[id.index].torque += t;
 }
 template <int N>
 void World<N>::apply_impulse_at(BodyId id, const Vec<N>& j, const Vec<N>& p) {
+  if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   if (!b.is_dynamic()) return;
   b.velocity += j * b.inv_mass;
@@ -113,6 +215,7 @@ void World<N>::apply_impulse_at(BodyId id, const Vec<N>& j, const Vec<N>& p) {
 }
 template <int N>
 void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
+  if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   if (!b.is_dynamic()) return;
   b.angular_velocity.c += b.world_inv_inertia() * j.c;
@@ -120,19 +223,46 @@ void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
 
 template <int N>
 void World<N>::step(double h) {
+  find_contacts(h);
+  process_collisions(h);
   integrate_velocities(h);
+  process_contacts(h);
   integrate_positions(h);
+  update_islands(h);
+  report_contact_events();
   clear_forces();
   ++steps_;
   time_ = double(steps_) * h;
+}
+
+template <int N>
+void World<N>::find_contacts(double h) {
+  contact::find_contacts(*contact_, bodies_, shapes_, materials_, settings_.contact, h);
+}
+template <int N>
+void World<N>::process_collisions(double h) {
+  contact::process_collisions(*contact_, bodies_, settings_.contact, h);
+}
+template <int N>
+void World<N>::process_contacts(double h) {
+  contact::process_contacts(*contact_, bodies_, settings_.contact, h);
+}
+template <int N>
+void World<N>::update_islands(double h) {
+  contact::update_islands(*contact_, bodies_, settings_.contact, h);
+}
+template <int N>
+void World<N>::report_contact_events() {
+  contact::report_events(*contact_);
 }
 
 // Symplectic Euler, velocity half: v += h (g + F/m), w += h I'^-1 tau, then the gyroscopic term
 // implicitly in the body frame, then drag as an implicit decay 1/(1 + h c) (stable for any h).
 template <int N>
 void World<N>::integrate_velocities(double h) {
-  for (Body<N>& b : bodies_) {
-    if (!b.is_dynamic()) continue;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Body<N>& b = bodies_[i];
+    if (!b.is_dynamic() || !contact_->awake[i]) continue;
     b.velocity += h * (settings_.gravity + b.force * b.inv_mass);
     // In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
     Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
@@ -144,15 +274,18 @@ void World<N>::integrate_velocities(double h) {
   }
 }
 
-// Position half, with the new velocities: x += h v, R <- exp(-h w/2) R (exact for constant w over the
-// step), and every rotor_repair_interval steps R is rebuilt from unit-vector factors.
+// Position half, with the new velocities plus the split-impulse pseudo velocities of position
+// correction: x += h v, R <- exp(-h w/2) R (exact for constant w over the step), and every
+// rotor_repair_interval steps R is rebuilt from unit-vector factors.
 template <int N>
 void World<N>::integrate_positions(double h) {
   const bool repair_now = (steps_ + 1) % settings_.rotor_repair_interval == 0;
-  for (Body<N>& b : bodies_) {
-    if (b.type == BodyType::Static) continue;
-    b.center += h * b.velocity;
-    b.rotor = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Body<N>& b = bodies_[i];
+    if (b.type == BodyType::Static || !contact_->awake[i]) continue;
+    const contact::SolverBody<N>& pseudo = contact_->solver_bodies[i];
+    b.center += h * (b.velocity + pseudo.vp);
+    b.rotor = exp<N>((b.angular_velocity + pseudo.wp) * (-0.5 * h)) * b.rotor;
     if (repair_now) b.rotor = repair(b.rotor);
   }
 }

@@ -7,9 +7,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
+#include "wedge/contact.hpp"
 #include "wedge/ga/products.hpp"
+#include "wedge/shape.hpp"
 
 namespace wedge {
 
@@ -32,6 +35,10 @@ struct BodyDef {
   BivMat<N> inertia = BivMat<N>::Identity();             // kg m^2, body frame, about the centre of mass
   double linear_drag = 0.0;                              // 1/s, dv/dt = -c v (air drag), >= 0
   double angular_drag = 0.0;                             // 1/s, dw/dt = -c w, >= 0
+  // What the body collides as (in the body frame); null: it collides with nothing. Shared, so that a
+  // thousand equal boxes hold one shape. A half-space is allowed on static bodies only.
+  std::shared_ptr<const Shape<N>> shape;
+  Material material;
 };
 
 // Hot state first (read and written every step), mass data after.

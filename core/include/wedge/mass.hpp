@@ -3,6 +3,8 @@
 // meshes and polytopes; plus the principal frame in which both covariance and inertia are diagonal.
 #pragma once
 
+#include "wedge/body.hpp"
+#include "wedge/error.hpp"
 #include "wedge/ga/types.hpp"
 #include "wedge/mesh.hpp"
 #include "wedge/shape.hpp"
@@ -80,5 +82,19 @@ struct PrincipalFrame {
 // increasing variance, each axis' largest component made positive, then det fixed to +1).
 template <int N>
 PrincipalFrame<N> principal_frame(const MassProperties<N>& props);
+
+// A dynamic body of the given shape and density (kg/m^n) at the origin: mass, centre of mass and inertia
+// from mass_properties(). Throws wedge::Error for a half-space (use a static body without mass).
+template <int N>
+BodyDef<N> body_def(std::shared_ptr<const Shape<N>> shape, double density) {
+  if (!shape) throw Error("body_def: no shape");
+  const MassProperties<N> props = mass_properties(*shape, density);
+  BodyDef<N> def;
+  def.mass = props.mass;
+  def.local_center = props.center;
+  def.inertia = props.inertia;
+  def.shape = std::move(shape);
+  return def;
+}
 
 }  // namespace wedge

@@ -1,18 +1,27 @@
 // The world: bodies, global settings and the time step.
 //
-// World::step(h) runs named stages in a fixed order (see world.cpp):
-//   integrate_velocities  forces, gravity, drag; the gyroscopic term implicitly (one Newton step)
+// World::step(h) runs named stages in a fixed order (Guendelman, Bridson & Fedkiw 2003, as in the
+// paper's section 6; see world.cpp and core/src/contact/):
+//   find_contacts         broad phase, narrow phase at the current positions, the step's constraints
+//   process_collisions    restitution impulses for contacts that close within the step
+//   integrate_velocities  forces, gravity, drag; the gyroscopic term implicitly
+//   process_contacts      restitution 0, then shock propagation up the contact graph, then
+//                         split-impulse position correction
 //   integrate_positions   x += h v, R <- exp(-h w / 2) R, then rotor repair
+//   update_islands        islands of touching bodies; still islands fall asleep
+//   report_contact_events pairs that began or stopped touching
 //   clear_forces
-// Later stages (collision, contact, shock propagation) slot in between the first two. Input is applied
-// only between steps, through the apply_* calls. Bodies are stored in creation order and every loop
-// runs in that order, so the same inputs give bit-identical states.
+// Input is applied only between steps, through the apply_* calls (which wake the body). Bodies are
+// stored in creation order and every loop runs in that order, so the same inputs give bit-identical
+// states.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "wedge/body.hpp"
+#include "wedge/contact.hpp"
 
 namespace wedge {
 
@@ -32,16 +41,23 @@ struct WorldSettings {
   bool gyroscopic = true;           // integrate the w x I'w term (off only for experiments)
   GyroscopicMethod gyroscopic_method = GyroscopicMethod::ImplicitMidpoint;
   int rotor_repair_interval = 1;    // steps between rotor repairs by factorisation (>= 1)
+  ContactSettings contact;          // collision and contact processing, sleeping
 };
 
-struct BodyId {
-  std::uint32_t index = 0;
-};
+namespace contact {
+template <int N>
+struct ContactState;
+}
 
 template <int N>
 class World {
  public:
   explicit World(const WorldSettings<N>& settings = {});
+  ~World();
+  World(const World& other);
+  World& operator=(const World& other);
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   BodyId add_body(const BodyDef<N>& def);
   int body_count() const { return int(bodies_.size()); }
@@ -51,6 +67,17 @@ class World {
   const std::string& name(BodyId id) const { return names_[id.index]; }
   const WorldSettings<N>& settings() const { return settings_; }
   WorldSettings<N>& settings() { return settings_; }
+  const Shape<N>* shape(BodyId id) const { return shapes_[id.index].get(); }
+  const Material& material(BodyId id) const { return materials_[id.index]; }
+
+  // Sleeping: a body at rest with its island is not simulated until something touches it or input is
+  // applied to it. Changing a body's state through body(id) does not wake it; call wake(id).
+  bool is_awake(BodyId id) const;
+  void wake(BodyId id);  // wakes the island it sleeps in
+
+  // Kinematic bodies (grabs, paddles): sets the velocities that carry the body to the pose (position of
+  // the body frame, rotor) in one step of h seconds.
+  void move_kinematic(BodyId id, const Vec<N>& position, const Rotor<N>& rotor, double h);
 
   // Input between steps. Forces and torques act during the next step only.
   void apply_force(BodyId id, const Vec<N>& force);                         // N, at the centre
@@ -72,14 +99,28 @@ class World {
   // FNV-1a over the bytes of every body's centre, rotor, velocity and angular velocity.
   std::uint64_t state_hash() const;
 
+  // What the last step did with contacts (arrays, sorted by pair; empty before the first step).
+  const std::vector<ContactBeginEvent<N>>& contact_begin_events() const;
+  const std::vector<ContactEndEvent>& contact_end_events() const;
+  // Every pair with contact points in the last step, sorted by (a, b) (built on demand).
+  std::vector<ContactInfo<N>> contacts() const;
+
  private:
+  void find_contacts(double h);
+  void process_collisions(double h);
   void integrate_velocities(double h);
+  void process_contacts(double h);
   void integrate_positions(double h);
+  void update_islands(double h);
+  void report_contact_events();
   void clear_forces();
 
   WorldSettings<N> settings_;
   std::vector<Body<N>> bodies_;
   std::vector<std::string> names_;  // cold data, apart from the hot state
+  std::vector<std::shared_ptr<const Shape<N>>> shapes_;
+  std::vector<Material> materials_;
+  std::unique_ptr<contact::ContactState<N>> contact_;
   std::int64_t steps_ = 0;
   double time_ = 0.0;
 };

@@ -52,7 +52,7 @@ Manifold<N> collide(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
     return none;
   }
   Manifold<N> m = e.swap ? collision::flipped(e.fn(b, tb, a, ta, settings)) : e.fn(a, ta, b, tb, settings);
-  if (!m.intersecting && a.features() && b.features()) {
+  if (settings.exact_separation && !m.intersecting && a.features() && b.features()) {
     // The separating axis test only bounds the distance from below; GJK gives it exactly.
     const auto sa = [&](const Vec<N>& d) { return collision::world_support(a, ta, d); };
     const auto sb = [&](const Vec<N>& d) { return collision::world_support(b, tb, d); };

@@ -51,6 +51,9 @@ struct CollisionSettings {
   // m. Contact points with a gap up to this are reported too (negative depth), so that resting contacts
   // do not flicker on and off; 0 reports only penetrating points.
   double contact_margin = 0.0;
+  // For polytope pairs that are apart, replace the separating-axis lower bound of the distance by the
+  // exact distance from GJK (depth = -distance). Tools want it; a contact solver does not.
+  bool exact_separation = true;
 };
 
 }  // namespace wedge

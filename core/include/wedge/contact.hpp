@@ -1,0 +1,83 @@
+// Contact response (paper section 6, after Guendelman, Bridson & Fedkiw 2003): materials and how a pair
+// combines them, the settings of the contact stages of World::step, and what a step reports about its
+// contacts afterwards (arrays, in a fixed order; never callbacks during the step).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "wedge/collision/manifold.hpp"
+
+namespace wedge {
+
+struct BodyId {
+  std::uint32_t index = 0;
+  friend bool operator==(BodyId a, BodyId b) { return a.index == b.index; }
+};
+
+// Per body. A pair combines them as Box2D does: the geometric mean of the friction coefficients and the
+// larger restitution.
+struct Material {
+  double restitution = 0.0;       // [0, 1]: ratio of normal separating to approaching speed
+  double friction = 0.5;          // static (Coulomb) coefficient, >= 0: sticks while |j_t| <= mu_s j_n
+  double kinetic_friction = 0.4;  // >= 0: sliding friction |j_t| = mu_k j_n
+};
+inline double mix_friction(double a, double b) { return std::sqrt(a * b); }
+inline double mix_restitution(double a, double b) { return std::max(a, b); }
+
+// The contact stages of the step. Each field says its unit; the defaults suit bodies of about 0.1-10 m
+// at 60-1000 Hz.
+struct ContactSettings {
+  // m. The narrow phase also reports points up to this far apart, so a contact that closes during the
+  // step is processed before it penetrates ("predicted positions", first order in h).
+  double contact_margin = 0.02;
+  // Collision processing (before the velocity update): passes over the closing contacts with the
+  // pair's restitution.
+  int collision_iterations = 5;
+  // Contact processing (after the velocity update): passes with restitution 0.
+  int contact_iterations = 10;
+  // Then shock propagation: the contact graph's levels upward from static bodies, each level solved with
+  // the levels below it frozen (infinite mass), this many passes per level; 0 turns it off.
+  int shock_iterations = 4;
+  // m. Penetration below this is left alone; deeper penetration is pushed out by split impulses, which
+  // move positions without adding kinetic energy.
+  double linear_slop = 0.0005;
+  // Fraction (0, 1] of the penetration beyond the slop removed per step.
+  double position_correction = 0.2;
+  int position_iterations = 4;
+  // Sleeping: an island whose bodies all move slower than these for time_to_sleep stops being simulated
+  // until something touches it or input is applied to one of its bodies.
+  bool allow_sleep = true;
+  double sleep_linear_speed = 0.02;   // m/s, of the centre and of the bounding-sphere rim (|w| r)
+  double time_to_sleep = 0.5;         // s
+};
+
+// A pair that began touching in the last step: some point received a normal impulse or penetrates.
+// Sorted by (a, b); a < b in creation order, and the normal points from a to b.
+template <int N>
+struct ContactBeginEvent {
+  BodyId a, b;
+  Vec<N> point = Vec<N>::Zero();   // m, world: the contact points weighted by their normal impulses
+  Vec<N> normal = Vec<N>::Zero();  // unit
+  double normal_impulse = 0.0;     // N s, total over the manifold in this step (collision and contact)
+  double approach_speed = 0.0;     // m/s, closing normal speed at the start of the step (>= 0)
+};
+
+// A pair that stopped touching in the last step; sorted by (a, b).
+struct ContactEndEvent {
+  BodyId a, b;
+};
+
+// A contact as the last step left it (for tools and tests): the manifold at the start of the step and
+// the normal impulse each point received in it.
+template <int N>
+struct ContactInfo {
+  BodyId a, b;
+  Manifold<N> manifold;
+  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s
+  bool touching = false;
+};
+
+}  // namespace wedge

@@ -1,0 +1,144 @@
+// The contact machinery World::step runs (internal). One object per world holds the broad phase, the
+// persistent pair list, the step's constraints, the solver's body copies and the islands. Each stage is
+// one member function, defined in its own file:
+//   find_contacts      pairs.cpp      broad phase, narrow phase, constraints; wakes touched islands
+//   process_collisions solver.cpp     restitution on predicted positions (before the velocity update)
+//   process_contacts   solver.cpp     restitution 0, shock propagation, split-impulse position correction
+//   update_islands     islands.cpp    islands of touching bodies, sleeping, the contact graph's levels
+//   report_events      pairs.cpp      began/stopped touching, sorted by pair
+// Everything runs in creation order of the bodies and sorted order of the pairs, so a step is a
+// function of the state alone (bit-identical on every run).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "wedge/body.hpp"
+#include "wedge/collision/aabb.hpp"
+#include "wedge/collision/broadphase.hpp"
+#include "wedge/contact.hpp"
+
+namespace wedge::contact {
+
+// A pair of bodies whose bounding boxes overlap (or a half-space and a body below its plane), a < b.
+template <int N>
+struct Pair {
+  std::uint32_t a = 0, b = 0;
+  Manifold<N> manifold;
+  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
+  bool touching = false;   // received a normal impulse or penetrated in the last step
+  bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
+  int constraint = -1;     // index of its constraint in this step, or -1
+  bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }
+};
+
+// A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
+template <int N>
+struct SolverBody {
+  Vec<N> v = Vec<N>::Zero();
+  Bivector<N> w{};
+  Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
+  Bivector<N> wp{};
+  double inv_mass = 0.0;
+  BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
+  int level = 0;                               // contact-graph level (shock propagation)
+  bool frozen = false;                         // infinite mass for the current shock-propagation level
+};
+
+// One contact point: lever arms, the parts of K = delta/m + [r]_*^T I^-1 [r]_* from each body, and the
+// accumulated impulses of the current stage.
+template <int N>
+struct PointConstraint {
+  Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
+  Eigen::Matrix<double, kBiv<N>, N> wa, wb;         // I^-1 [r]_* for each body (angular change per impulse)
+  Mat<N> ka, kb;                                    // each body's part of K
+  Mat<N> k, k_inv;                                  // K of the pair (or of the unfrozen body)
+  double normal_mass = 0.0;                         // 1 / (n^T K n), full K
+  double gap = 0.0;                                 // m, -depth at the start of the step
+  double approach = 0.0;                            // m/s, normal velocity at the start (< 0 closing)
+  Vec<N> impulse = Vec<N>::Zero();                  // N s, accumulated in the current stage
+  double normal_total = 0.0;                        // N s, over all stages (events, ContactInfo)
+  double pseudo = 0.0;                              // split impulse along the normal
+};
+
+template <int N>
+struct Constraint {
+  int pair = 0;   // index into pairs
+  int a = 0, b = 0;
+  Vec<N> normal = Vec<N>::Zero();
+  double friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
+  int first = 0, count = 0;  // points[first .. first + count)
+  int level = 0;             // max of the bodies' levels (shock propagation order)
+};
+
+// Everything the contact stages keep between and during steps. Plain data: the stages are free
+// functions, one file per group (see the top of this file).
+template <int N>
+struct ContactState {
+  BroadPhase<N> broad_phase;
+  std::vector<int> proxy;                 // per body: broad-phase proxy, -1 without one
+  std::vector<Aabb<N>> box;               // per body: tight world box at the last update
+  std::vector<std::uint32_t> halfspaces;  // bodies whose shape is a half-space
+  std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
+  std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
+
+  std::vector<SolverBody<N>> solver_bodies;  // per body
+  std::vector<Constraint<N>> constraints;    // in pair order
+  std::vector<PointConstraint<N>> points;
+  std::vector<int> shock_order;  // constraints sorted by level (stable)
+
+  // Islands and sleep, per body.
+  std::vector<char> awake;
+  std::vector<double> sleep_time;  // s spent below the sleep speed
+  std::vector<int> island;         // label (smallest body index) of the island the body was last in, or -1
+  std::vector<int> union_parent, bfs_queue, adjacency_start, adjacency;
+
+  std::vector<ContactBeginEvent<N>> begin_events;
+  std::vector<ContactEndEvent> end_events, ended;  // ended: pairs dropped by the broad phase this step
+
+  void wake(int i) {
+    awake[i] = 1;
+    sleep_time[i] = 0.0;
+  }
+  // Wakes the body and the island it fell asleep with.
+  void wake_island(int i) {
+    const int label = island[i];
+    wake(i);
+    if (label < 0) return;
+    for (std::size_t j = 0; j < island.size(); ++j)
+      if (island[j] == label && !awake[j]) wake(int(j));
+  }
+};
+
+template <int N>
+using Shapes = std::vector<std::shared_ptr<const Shape<N>>>;
+
+// pairs.cpp
+template <int N>
+void add_body(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index);
+template <int N>
+void find_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                   const std::vector<Material>& materials, const ContactSettings& settings, double h);
+template <int N>
+void report_events(ContactState<N>& state);
+// solver.cpp
+template <int N>
+void process_collisions(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
+                        double h);
+template <int N>
+void process_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
+                      double h);
+// islands.cpp
+template <int N>
+void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);
+template <int N>
+void update_islands(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h);
+
+// Relative velocity of b with respect to a at the point: (v_b + r_b . w_b) - (v_a + r_a . w_a).
+template <int N>
+inline Vec<N> relative_velocity(const SolverBody<N>& a, const SolverBody<N>& b, const PointConstraint<N>& p) {
+  return b.v + dot<N>(p.rb, b.w) - a.v - dot<N>(p.ra, a.w);
+}
+
+}  // namespace wedge::contact

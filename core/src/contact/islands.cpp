@@ -1,0 +1,142 @@
+// The contact graph: its levels upward from static bodies (for shock propagation) and its islands of
+// touching dynamic bodies (for sleeping). Breadth-first search and union-find over the step's
+// constraints, in constraint order, so both are deterministic.
+#include <algorithm>
+#include <limits>
+
+#include "contact/contact_system.hpp"
+
+namespace wedge::contact {
+
+namespace {
+
+constexpr int kUnreached = std::numeric_limits<int>::max();
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+// Union keeping the smaller index as the root, so a label is the island's smallest body index.
+void unite(std::vector<int>& parent, int a, int b) {
+  a = find_root(parent, a);
+  b = find_root(parent, b);
+  if (a == b) return;
+  if (a < b)
+    parent[b] = a;
+  else
+    parent[a] = b;
+}
+
+}  // namespace
+
+// Level -1: static, kinematic and sleeping bodies (infinite mass in this step). Level 0: dynamic bodies
+// touching one of them; level k + 1: touching a level-k body. Bodies that no chain reaches (a free
+// cluster in the air) keep kUnreached and are left out of shock propagation.
+template <int N>
+void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  const int n = int(bodies.size());
+  auto movable = [&](int i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  for (int i = 0; i < n; ++i) s.solver_bodies[i].level = movable(i) ? kUnreached : -1;
+  // Adjacency between movable bodies (compressed rows).
+  s.adjacency_start.assign(n + 1, 0);
+  for (const Constraint<N>& c : s.constraints)
+    if (movable(c.a) && movable(c.b)) {
+      ++s.adjacency_start[c.a + 1];
+      ++s.adjacency_start[c.b + 1];
+    }
+  for (int i = 0; i < n; ++i) s.adjacency_start[i + 1] += s.adjacency_start[i];
+  s.adjacency.resize(s.adjacency_start[n]);
+  s.bfs_queue.assign(s.adjacency_start.begin(), s.adjacency_start.end() - 1);  // fill cursors
+  for (const Constraint<N>& c : s.constraints)
+    if (movable(c.a) && movable(c.b)) {
+      s.adjacency[s.bfs_queue[c.a]++] = c.b;
+      s.adjacency[s.bfs_queue[c.b]++] = c.a;
+    }
+  s.bfs_queue.clear();
+  for (const Constraint<N>& c : s.constraints) {
+    const bool ma = movable(c.a), mb = movable(c.b);
+    if (ma == mb) continue;
+    const int i = ma ? c.a : c.b;
+    if (s.solver_bodies[i].level == kUnreached) {
+      s.solver_bodies[i].level = 0;
+      s.bfs_queue.push_back(i);
+    }
+  }
+  for (std::size_t head = 0; head < s.bfs_queue.size(); ++head) {
+    const int i = s.bfs_queue[head];
+    for (int e = s.adjacency_start[i]; e < s.adjacency_start[i + 1]; ++e) {
+      const int j = s.adjacency[e];
+      if (s.solver_bodies[j].level == kUnreached) {
+        s.solver_bodies[j].level = s.solver_bodies[i].level + 1;
+        s.bfs_queue.push_back(j);
+      }
+    }
+  }
+  s.shock_order.clear();
+  for (std::size_t ci = 0; ci < s.constraints.size(); ++ci) {
+    Constraint<N>& c = s.constraints[ci];
+    c.level = std::max(s.solver_bodies[c.a].level, s.solver_bodies[c.b].level);
+    if (c.level != kUnreached) s.shock_order.push_back(int(ci));
+  }
+  std::stable_sort(s.shock_order.begin(), s.shock_order.end(),
+                   [&s](int x, int y) { return s.constraints[x].level < s.constraints[y].level; });
+}
+
+// Islands: dynamic bodies joined by contact points. A body is still while its centre and the rim of its
+// bounding sphere move slower than sleep_linear_speed (and no moving kinematic body touches it); an
+// island whose bodies have all been still for time_to_sleep falls asleep, velocities set to zero.
+template <int N>
+void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
+  const int n = int(bodies.size());
+  auto movable = [&](int i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  s.union_parent.resize(n);
+  for (int i = 0; i < n; ++i) s.union_parent[i] = i;
+  for (int i = 0; i < n; ++i) {
+    if (!movable(i)) continue;
+    const Body<N>& b = bodies[i];
+    const double radius = 0.5 * s.box[i].extents().norm();
+    const double speed = b.velocity.norm() + b.angular_velocity.c.norm() * radius;
+    s.sleep_time[i] = speed < settings.sleep_linear_speed ? s.sleep_time[i] + h : 0.0;
+  }
+  for (const Constraint<N>& c : s.constraints) {
+    const bool ma = movable(c.a), mb = movable(c.b);
+    if (ma && mb) {
+      unite(s.union_parent, c.a, c.b);
+    } else {
+      const int other = ma ? c.b : c.a, self = ma ? c.a : c.b;
+      const Body<N>& o = bodies[other];
+      if (o.type == BodyType::Kinematic && (o.velocity.squaredNorm() > 0.0 || o.angular_velocity.c.squaredNorm() > 0.0))
+        s.sleep_time[self] = 0.0;
+    }
+  }
+  // Smallest sleep time per island, kept at its root.
+  for (int i = 0; i < n; ++i) {
+    if (!movable(i)) continue;
+    const int r = find_root(s.union_parent, i);
+    s.island[i] = r;
+    if (r != i) s.sleep_time[r] = std::min(s.sleep_time[r], s.sleep_time[i]);
+  }
+  if (!settings.allow_sleep) return;
+  for (int i = 0; i < n; ++i) {
+    if (!movable(i) || s.sleep_time[s.island[i]] < settings.time_to_sleep) continue;
+    s.awake[i] = 0;
+    bodies[i].velocity.setZero();
+    bodies[i].angular_velocity = Bivector<N>{};
+  }
+}
+
+#define WEDGE_INSTANTIATE(N)                                                     \
+  template void compute_levels<N>(ContactState<N>&, const std::vector<Body<N>>&); \
+  template void update_islands<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double);
+WEDGE_INSTANTIATE(2)
+WEDGE_INSTANTIATE(3)
+WEDGE_INSTANTIATE(4)
+WEDGE_INSTANTIATE(5)
+WEDGE_INSTANTIATE(6)
+#undef WEDGE_INSTANTIATE
+
+}  // namespace wedge::contact

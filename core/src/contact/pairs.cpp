@@ -1,0 +1,269 @@
+// Finding contacts: broad phase, the persistent sorted pair list, the narrow phase at the current
+// positions (with the speculative margin), waking islands that are touched, the step's constraints; and
+// the contact events after the step.
+#include <algorithm>
+
+#include <Eigen/LU>
+
+#include "contact/contact_system.hpp"
+#include "wedge/collision/narrow_phase.hpp"
+
+namespace wedge::contact {
+
+namespace {
+
+template <int N>
+Transform<N> transform_of(const Body<N>& b) {
+  return Transform<N>{b.position(), to_matrix(b.rotor)};
+}
+
+// Kinematic bodies with a velocity can hit sleeping bodies; resting ones behave like static bodies.
+template <int N>
+bool moving_kinematic(const Body<N>& b) {
+  return b.type == BodyType::Kinematic && (b.velocity.squaredNorm() > 0.0 || b.angular_velocity.c.squaredNorm() > 0.0);
+}
+
+// Moves the proxies of the bodies that can move, then lists the candidate pairs: the broad phase's,
+// plus each half-space with every dynamic body whose box reaches within the margin of its plane.
+template <int N>
+void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, double h) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body<N>& b = bodies[i];
+    if (s.proxy[i] < 0 || b.type == BodyType::Static || !s.awake[i]) continue;
+    s.box[i] = world_aabb(*shapes[i], b.position(), b.rotor);
+    s.broad_phase.move_proxy(s.proxy[i], s.box[i], Vec<N>(b.velocity * h));
+  }
+  s.broad_phase.update_pairs(s.candidate_pairs);
+  const double margin = s.broad_phase.settings().margin;
+  for (const std::uint32_t hs : s.halfspaces) {
+    const Body<N>& g = bodies[hs];
+    const auto& plane = shapes[hs]->template as<shapes::Halfspace<N>>();
+    const Vec<N> n = rotate(g.rotor, plane.normal);
+    const double offset = plane.offset + n.dot(g.position());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (s.proxy[i] < 0 || !bodies[i].is_dynamic()) continue;
+      const Aabb<N>& box = s.box[i];
+      double low = 0.0;  // the box's lowest point along n
+      for (int k = 0; k < N; ++k) low += n[k] * (n[k] > 0.0 ? box.lo[k] : box.hi[k]);
+      if (low <= offset + margin)
+        s.candidate_pairs.emplace_back(std::min<std::uint32_t>(hs, std::uint32_t(i)),
+                                       std::max<std::uint32_t>(hs, std::uint32_t(i)));
+    }
+  }
+  if (!s.halfspaces.empty()) std::sort(s.candidate_pairs.begin(), s.candidate_pairs.end());
+}
+
+// The new pair list, carrying each surviving pair's manifold and touching state over; a pair that
+// leaves while touching ends.
+template <int N>
+void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  s.next_pairs.clear();
+  s.ended.clear();
+  std::size_t old = 0;
+  auto drop = [&s](const Pair<N>& p) {
+    if (p.touching) s.ended.push_back({BodyId{p.a}, BodyId{p.b}});
+  };
+  for (const auto& [a, b] : s.candidate_pairs) {
+    if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
+    while (old < s.pairs.size() && (s.pairs[old].a < a || (s.pairs[old].a == a && s.pairs[old].b < b)))
+      drop(s.pairs[old++]);
+    if (old < s.pairs.size() && s.pairs[old].a == a && s.pairs[old].b == b) {
+      s.next_pairs.push_back(s.pairs[old++]);
+    } else {
+      Pair<N> p;
+      p.a = a;
+      p.b = b;
+      s.next_pairs.push_back(p);
+    }
+  }
+  for (; old < s.pairs.size(); ++old) drop(s.pairs[old]);
+  s.pairs.swap(s.next_pairs);
+}
+
+// Collides every pair with an awake dynamic body (or a moving kinematic one against a dynamic body).
+// A sleeping island that gets a contact point wakes, and its own pairs are collided in another pass.
+template <int N>
+void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                  const ContactSettings& settings) {
+  CollisionSettings cs;
+  cs.contact_margin = settings.contact_margin;
+  cs.exact_separation = false;
+  for (Pair<N>& p : s.pairs) p.updated = false;
+  auto active = [&](std::uint32_t i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  for (bool again = true; again;) {
+    again = false;
+    for (Pair<N>& p : s.pairs) {
+      if (p.updated) continue;
+      const Body<N>& a = bodies[p.a];
+      const Body<N>& b = bodies[p.b];
+      const bool needed = active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
+                          (moving_kinematic(b) && a.is_dynamic());
+      if (!needed) continue;
+      p.manifold = collide(*shapes[p.a], transform_of(a), *shapes[p.b], transform_of(b), cs);
+      p.updated = true;
+      if (p.manifold.count == 0) continue;
+      for (const std::uint32_t i : {p.a, p.b})
+        if (bodies[i].is_dynamic() && !s.awake[i]) {
+          s.wake_island(int(i));
+          again = true;
+        }
+    }
+  }
+}
+
+// Before the step's first stage: inverse world inertia of every awake dynamic body, and velocities.
+template <int N>
+void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body<N>& b = bodies[i];
+    SolverBody<N>& sb = s.solver_bodies[i];
+    sb.v = b.velocity;
+    sb.w = b.angular_velocity;
+    sb.vp.setZero();
+    sb.wp = Bivector<N>{};
+    sb.frozen = false;
+    if (b.is_dynamic() && s.awake[i]) {
+      sb.inv_mass = b.inv_mass;
+      sb.inv_inertia = b.world_inv_inertia();
+    } else {
+      sb.inv_mass = 0.0;
+      sb.inv_inertia.setZero();
+    }
+  }
+}
+
+// One constraint per pair with contact points and an awake dynamic body. Each point keeps its lever
+// arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper section 6).
+template <int N>
+void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials) {
+  s.constraints.clear();
+  s.points.clear();
+  for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
+    Pair<N>& p = s.pairs[pi];
+    p.constraint = -1;
+    if (!p.updated || p.manifold.count == 0) continue;
+    p.normal_impulse.fill(0.0);
+    const bool da = bodies[p.a].is_dynamic() && s.awake[p.a], db = bodies[p.b].is_dynamic() && s.awake[p.b];
+    if (!da && !db) continue;
+    Constraint<N> c;
+    c.pair = int(pi);
+    c.a = int(p.a);
+    c.b = int(p.b);
+    c.normal = p.manifold.normal;
+    const Material& ma = materials[p.a];
+    const Material& mb = materials[p.b];
+    c.friction = mix_friction(ma.friction, mb.friction);
+    c.kinetic_friction = std::min(mix_friction(ma.kinetic_friction, mb.kinetic_friction), c.friction);
+    c.restitution = mix_restitution(ma.restitution, mb.restitution);
+    c.first = int(s.points.size());
+    c.count = p.manifold.count;
+    const SolverBody<N>& sa = s.solver_bodies[c.a];
+    const SolverBody<N>& sb = s.solver_bodies[c.b];
+    for (int k = 0; k < c.count; ++k) {
+      const ContactPoint<N>& cp = p.manifold.points[k];
+      PointConstraint<N> q;
+      q.ra = cp.point - bodies[c.a].center;
+      q.rb = cp.point - bodies[c.b].center;
+      const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
+      q.wa = sa.inv_inertia * ja;
+      q.wb = sb.inv_inertia * jb;
+      q.ka = sa.inv_mass * Mat<N>::Identity() + ja.transpose() * q.wa;
+      q.kb = sb.inv_mass * Mat<N>::Identity() + jb.transpose() * q.wb;
+      q.k = q.ka + q.kb;
+      q.k_inv = q.k.inverse();
+      q.normal_mass = 1.0 / c.normal.dot(q.k * c.normal);
+      q.gap = -cp.depth;
+      q.approach = c.normal.dot(relative_velocity(sa, sb, q));
+      s.points.push_back(q);
+    }
+    p.constraint = int(s.constraints.size());
+    s.constraints.push_back(c);
+  }
+}
+
+}  // namespace
+
+template <int N>
+void add_body(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index) {
+  s.awake.push_back(1);
+  s.sleep_time.push_back(0.0);
+  s.island.push_back(-1);
+  s.proxy.push_back(-1);
+  s.box.push_back(Aabb<N>{});
+  s.solver_bodies.emplace_back();
+  const Shape<N>* shape = shapes[index].get();
+  if (!shape) return;
+  if (!shape->bounded()) {
+    s.halfspaces.push_back(std::uint32_t(index));
+    return;
+  }
+  s.box[index] = world_aabb(*shape, bodies[index].position(), bodies[index].rotor);
+  s.proxy[index] = s.broad_phase.create_proxy(s.box[index], std::uint32_t(index));
+}
+
+template <int N>
+void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                   const std::vector<Material>& materials, const ContactSettings& settings, double h) {
+  update_broad_phase(s, bodies, shapes, h);
+  merge_pairs(s, bodies);
+  narrow_phase(s, bodies, shapes, settings);
+  load_solver_bodies(s, bodies);
+  build_constraints(s, bodies, materials);
+  compute_levels(s, bodies);
+}
+
+// A pair is touching when some point received a normal impulse or penetrates; pairs not collided in
+// this step (asleep) keep their state.
+template <int N>
+void report_events(ContactState<N>& s) {
+  s.begin_events.clear();
+  s.end_events = s.ended;
+  for (Pair<N>& p : s.pairs) {
+    if (!p.updated) continue;
+    double total = 0.0, approach = 0.0;
+    Vec<N> weighted = Vec<N>::Zero();
+    if (p.constraint >= 0) {
+      const Constraint<N>& c = s.constraints[p.constraint];
+      for (int k = 0; k < c.count; ++k) {
+        const PointConstraint<N>& q = s.points[c.first + k];
+        p.normal_impulse[k] = q.normal_total;
+        total += q.normal_total;
+        weighted += q.normal_total * p.manifold.points[k].point;
+        approach = std::max(approach, -q.approach);
+      }
+    } else {
+      p.normal_impulse.fill(0.0);
+    }
+    const bool touching = total > 0.0 || (p.manifold.count > 0 && p.manifold.depth > 0.0);
+    if (touching && !p.touching) {
+      ContactBeginEvent<N> e;
+      e.a = BodyId{p.a};
+      e.b = BodyId{p.b};
+      e.normal = p.manifold.normal;
+      e.normal_impulse = total;
+      e.point = total > 0.0 ? Vec<N>(weighted / total) : p.manifold.points[0].point;
+      e.approach_speed = approach;
+      s.begin_events.push_back(e);
+    } else if (!touching && p.touching) {
+      s.end_events.push_back({BodyId{p.a}, BodyId{p.b}});
+    }
+    p.touching = touching;
+  }
+  std::sort(s.end_events.begin(), s.end_events.end(), [](const ContactEndEvent& x, const ContactEndEvent& y) {
+    return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
+  });
+}
+
+#define WEDGE_INSTANTIATE(N)                                                                                  \
+  template void add_body<N>(ContactState<N>&, const std::vector<Body<N>>&, const Shapes<N>&, int);           \
+  template void find_contacts<N>(ContactState<N>&, std::vector<Body<N>>&, const Shapes<N>&,                   \
+                                 const std::vector<Material>&, const ContactSettings&, double);               \
+  template void report_events<N>(ContactState<N>&);
+WEDGE_INSTANTIATE(2)
+WEDGE_INSTANTIATE(3)
+WEDGE_INSTANTIATE(4)
+WEDGE_INSTANTIATE(5)
+WEDGE_INSTANTIATE(6)
+#undef WEDGE_INSTANTIATE
+
+}  // namespace wedge::contact
