@@ -89,4 +89,13 @@ decltype(auto) with_dim(int n, F&& f) {
   }
 }
 
+// Reads and loads a scene file whose "dim" must be N (tests, benchmarks); throws Failure naming the file.
+template <int N>
+Scene<N> load_scene_file(const std::string& file) {
+  const Json doc = read_json_file(file);
+  const int n = read_dim(doc, file);
+  if (n != N) throw Failure(file + ": dim: expected " + std::to_string(N) + ", got " + std::to_string(n));
+  return load_scene<N>(doc, file);
+}
+
 }  // namespace wedge::cli
