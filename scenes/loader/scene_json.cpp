@@ -81,8 +81,10 @@ ContactSettings read_contact_settings(const Node& node) {
   ObjectReader obj(node);
   ContactSettings c;
   c.contact_margin = read_ranged(obj, "contact_margin", c.contact_margin, 0.0, 1e3, "in [0, 1000] m");
+  c.static_slip_speed = read_ranged(obj, "static_slip_speed", c.static_slip_speed, 0.0, 1e6, ">= 0 m/s");
   c.collision_iterations = read_count(obj, "collision_iterations", c.collision_iterations);
   c.contact_iterations = read_count(obj, "contact_iterations", c.contact_iterations);
+  c.warm_start = obj.boolean_or("warm_start", c.warm_start);
   c.shock_iterations = read_count(obj, "shock_iterations", c.shock_iterations);
   c.linear_slop = read_ranged(obj, "linear_slop", c.linear_slop, 0.0, 1e3, "in [0, 1000] m");
   c.position_correction = read_ranged(obj, "position_correction", c.position_correction, 1e-9, 1.0, "in (0, 1]");

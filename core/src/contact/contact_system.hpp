@@ -30,6 +30,12 @@ struct Pair {
   bool touching = false;   // received a normal impulse or penetrated in the last step
   bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
   int constraint = -1;     // index of its constraint in this step, or -1
+  // Warm start: the contact-stage impulses of the last step per feature id, given back to the points
+  // that keep their id, so the iterations start from last step's answer.
+  int warm_count = 0;
+  std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
+  std::array<double, kMaxManifoldPoints<N>> warm_normal{};
+  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent{};
   bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }
 };
 
@@ -38,6 +44,8 @@ template <int N>
 struct SolverBody {
   Vec<N> v = Vec<N>::Zero();
   Bivector<N> w{};
+  Vec<N> v0 = Vec<N>::Zero();  // velocities before the collision stage (its energy check)
+  Bivector<N> w0{};
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
   double inv_mass = 0.0;
@@ -46,21 +54,38 @@ struct SolverBody {
   bool frozen = false;                         // infinite mass for the current shock-propagation level
 };
 
-// One contact point: lever arms, the parts of K = delta/m + [r]_*^T I^-1 [r]_* from each body, and the
-// accumulated impulses of the current stage.
+// One contact point: lever arms, the parts of K = delta/m + [r]_*^T I^-1 [r]_* from each body, the
+// effective masses along the normal and in the tangent space, and the accumulated impulses of the
+// current stage.
 template <int N>
 struct PointConstraint {
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
   Eigen::Matrix<double, kBiv<N>, N> wa, wb;         // I^-1 [r]_* for each body (angular change per impulse)
   Mat<N> ka, kb;                                    // each body's part of K
-  Mat<N> k, k_inv;                                  // K of the pair (or of the unfrozen body)
-  double normal_mass = 0.0;                         // 1 / (n^T K n), full K
+  // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
+  // that makes it (of the pair, or of the unfrozen body during shock propagation).
+  Mat<N> tangent_mass;
+  double normal_mass = 0.0;                         // 1 / (n^T K n), likewise
   double gap = 0.0;                                 // m, -depth at the start of the step
   double approach = 0.0;                            // m/s, normal velocity at the start (< 0 closing)
-  Vec<N> impulse = Vec<N>::Zero();                  // N s, accumulated in the current stage
+  double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
+  bool sliding = false;   // it was slipping: kinetic friction, against the slip
+  double normal_impulse = 0.0;                      // N s, accumulated in the current stage
+  Vec<N> tangent_impulse = Vec<N>::Zero();          // N s, likewise (friction)
   double normal_total = 0.0;                        // N s, over all stages (events, ContactInfo)
+  double warm_normal = 0.0;                         // N s, last step's contact-stage impulses (warm start)
+  Vec<N> warm_tangent = Vec<N>::Zero();
   double pseudo = 0.0;                              // split impulse along the normal
+  double pseudo_mass = 0.0;                         // 1 / (n^T K n) of the pair (kept through shock propagation)
 };
+
+// The effective masses of K for a contact with normal n.
+template <int N>
+inline void set_effective_masses(PointConstraint<N>& p, const Mat<N>& k, const Vec<N>& n) {
+  p.normal_mass = 1.0 / n.dot(k * n);
+  const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
+  p.tangent_mass = (proj * k * proj + n * n.transpose()).inverse();
+}
 
 template <int N>
 struct Constraint {
@@ -93,6 +118,7 @@ struct ContactState {
   std::vector<double> sleep_time;  // s spent below the sleep speed
   std::vector<int> island;         // label (smallest body index) of the island the body was last in, or -1
   std::vector<int> union_parent, bfs_queue, adjacency_start, adjacency;
+  std::vector<double> group_b, group_c;  // collision-stage energy terms per group
 
   std::vector<ContactBeginEvent<N>> begin_events;
   std::vector<ContactEndEvent> end_events, ended;  // ended: pairs dropped by the broad phase this step

@@ -80,13 +80,23 @@ void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   s.pairs.swap(s.next_pairs);
 }
 
+// An upper bound of how fast any point of the body moves (m/s): centre speed plus |w| times the radius
+// of the sphere about the centre of mass that holds its bounding box (at most the box's diagonal). Zero for a half-space (static).
+template <int N>
+double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
+  if (s.proxy[i] < 0) return 0.0;
+  return b.velocity.norm() + b.angular_velocity.c.norm() * s.box[i].extents().norm();
+}
+
 // Collides every pair with an awake dynamic body (or a moving kinematic one against a dynamic body).
-// A sleeping island that gets a contact point wakes, and its own pairs are collided in another pass.
+// Each pair's margin is the speculative contact_margin plus how far the two can close in one step, so a
+// contact that will close during the step is seen now (Guendelman's predicted positions, to first
+// order). A sleeping island that gets a contact point wakes, and its own pairs are collided in another
+// pass.
 template <int N>
 void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
-                  const ContactSettings& settings) {
+                  const ContactSettings& settings, double h) {
   CollisionSettings cs;
-  cs.contact_margin = settings.contact_margin;
   cs.exact_separation = false;
   for (Pair<N>& p : s.pairs) p.updated = false;
   auto active = [&](std::uint32_t i) { return bodies[i].is_dynamic() && s.awake[i]; };
@@ -99,6 +109,8 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
       const bool needed = active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
                           (moving_kinematic(b) && a.is_dynamic());
       if (!needed) continue;
+      cs.contact_margin =
+          settings.contact_margin + h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
       p.manifold = collide(*shapes[p.a], transform_of(a), *shapes[p.b], transform_of(b), cs);
       p.updated = true;
       if (p.manifold.count == 0) continue;
@@ -133,15 +145,21 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
 }
 
 // One constraint per pair with contact points and an awake dynamic body. Each point keeps its lever
-// arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper section 6).
+// arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper section 6), and takes the
+// static friction coefficient if it was not slipping at the start of the step, else the kinetic one.
 template <int N>
-void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials) {
+void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
+                       double slip_speed) {
   s.constraints.clear();
   s.points.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
     p.constraint = -1;
-    if (!p.updated || p.manifold.count == 0) continue;
+    if (!p.updated) continue;
+    if (p.manifold.count == 0) {
+      p.warm_count = 0;
+      continue;
+    }
     p.normal_impulse.fill(0.0);
     const bool da = bodies[p.a].is_dynamic() && s.awake[p.a], db = bodies[p.b].is_dynamic() && s.awake[p.b];
     if (!da && !db) continue;
@@ -169,11 +187,19 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       q.wb = sb.inv_inertia * jb;
       q.ka = sa.inv_mass * Mat<N>::Identity() + ja.transpose() * q.wa;
       q.kb = sb.inv_mass * Mat<N>::Identity() + jb.transpose() * q.wb;
-      q.k = q.ka + q.kb;
-      q.k_inv = q.k.inverse();
-      q.normal_mass = 1.0 / c.normal.dot(q.k * c.normal);
+      set_effective_masses(q, Mat<N>(q.ka + q.kb), c.normal);
+      q.pseudo_mass = q.normal_mass;
       q.gap = -cp.depth;
-      q.approach = c.normal.dot(relative_velocity(sa, sb, q));
+      const Vec<N> u = relative_velocity(sa, sb, q);
+      q.approach = c.normal.dot(u);
+      q.sliding = (u - q.approach * c.normal).norm() > slip_speed;
+      q.friction = q.sliding ? c.kinetic_friction : c.friction;
+      for (int w = 0; w < p.warm_count; ++w)
+        if (p.warm_id[w] == cp.id) {
+          q.warm_normal = p.warm_normal[w];
+          q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
+          break;
+        }
       s.points.push_back(q);
     }
     p.constraint = int(s.constraints.size());
@@ -206,9 +232,9 @@ void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shape
                    const std::vector<Material>& materials, const ContactSettings& settings, double h) {
   update_broad_phase(s, bodies, shapes, h);
   merge_pairs(s, bodies);
-  narrow_phase(s, bodies, shapes, settings);
+  narrow_phase(s, bodies, shapes, settings, h);
   load_solver_bodies(s, bodies);
-  build_constraints(s, bodies, materials);
+  build_constraints(s, bodies, materials, settings.static_slip_speed);
   compute_levels(s, bodies);
 }
 

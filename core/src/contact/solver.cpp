@@ -1,8 +1,9 @@
 // Collision and contact processing (paper section 6, after Guendelman, Bridson & Fedkiw 2003), as
-// sequential impulses on the step's constraints. Each point solves its full n x n block: the impulse
-// that stops the relative velocity (static friction) is kept when it lies inside the friction cone;
-// otherwise the point slides, with the tangential impulse mu_k times the normal one and the normal part
-// re-solved with it. Impulses accumulate per stage and are clamped to push, never pull.
+// sequential impulses on the step's constraints, with K = delta/m + [r]_*^T I^-1 [r]_* per point.
+// Friction acts in the whole (n-1)-dimensional tangent space at once, inside the Coulomb cone
+// |j_t| <= mu j_n: mu = mu_s for a point at rest, mu_k for one that was slipping when the step began
+// (so a sticking body breaks loose once the static cone is exceeded and slides on with mu_k). Impulses
+// accumulate per stage and are clamped to push, never pull.
 //
 // Predicted positions: a point with gap g (m) and normal velocity u_n is where the bodies will be after
 // the step to first order, g + h u_n. Collision processing (before the velocity update) acts on points
@@ -29,33 +30,37 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
   }
 }
 
-// One point: the accumulated impulse moves so that the relative velocity becomes target * n with no
-// slip, then is projected: no pull, and a kinetic slide outside the static friction cone.
+// One point, friction first and the normal last (the normal matters most): the tangential impulse that
+// stops slipping if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when the step
+// began), else mu j_n against the slip; then the normal impulse that brings the normal velocity to the
+// target, never pulling.
 template <int N>
 void solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
   const Vec<N>& n = c.normal;
-  const Vec<N> u = relative_velocity(a, b, p);
-  const Vec<N> old = p.impulse;
-  Vec<N> next = old + p.k_inv * (target * n - u);
-  const double pn = next.dot(n);
-  if (pn <= 0.0) {
-    next.setZero();
-  } else {
-    const Vec<N> pt = next - pn * n;
-    const double t = pt.norm();
-    if (t > c.friction * pn) {
-      // Sliding: j = j_n (n + mu_k d), with j_n such that the normal velocity reaches the target.
-      const Vec<N> dir = pt / t;
-      const Vec<N> slide = n + c.kinetic_friction * dir;
-      const double normal_mass = n.dot(p.k * n);
-      const double denom = n.dot(p.k * slide);
-      double jn = denom > 0.5 * normal_mass ? (target - n.dot(u) + n.dot(p.k * old)) / denom : pn;
-      jn = std::max(jn, 0.0);
-      next = jn * slide;
+  if (p.normal_impulse > 0.0 && p.friction > 0.0) {
+    const Vec<N> u = relative_velocity(a, b, p);
+    const Vec<N> old = p.tangent_impulse;
+    const Vec<N> slip = u - u.dot(n) * n;
+    Vec<N> next = old - p.tangent_mass * slip;
+    const double t = next.norm(), limit = p.friction * p.normal_impulse;
+    if (t > limit) {
+      // Outside the cone. Kinetic friction opposes the slip (Coulomb); the clamped sticking impulse
+      // would not, since K couples the tangent directions through the rotation.
+      // A point that was sticking keeps the clamped direction until it slips for real.
+      const double speed = slip.norm();
+      if (p.sliding && speed > 1e-12) {
+        next = slip * (-limit / speed);
+      } else {
+        next *= limit / t;
+      }
     }
+    apply_impulse(a, b, p, Vec<N>(next - old));
+    p.tangent_impulse = next;
   }
-  apply_impulse(a, b, p, Vec<N>(next - old));
-  p.impulse = next;
+  const double un = n.dot(relative_velocity(a, b, p));
+  const double next = std::max(p.normal_impulse + p.normal_mass * (target - un), 0.0);
+  apply_impulse(a, b, p, Vec<N>((next - p.normal_impulse) * n));
+  p.normal_impulse = next;
 }
 
 template <int N>
@@ -85,8 +90,9 @@ void finish_stage(ContactState<N>& s) {
   for (const Constraint<N>& c : s.constraints)
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
-      p.normal_total += p.impulse.dot(c.normal);
-      p.impulse.setZero();
+      p.normal_total += p.normal_impulse;
+      p.normal_impulse = 0.0;
+      p.tangent_impulse.setZero();
     }
 }
 
@@ -106,8 +112,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
       const bool fa = s.solver_bodies[c.a].level < level, fb = s.solver_bodies[c.b].level < level;
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.points[k];
-        p.k = (fa ? Mat<N>::Zero() : p.ka) + (fb ? Mat<N>::Zero() : p.kb);
-        p.k_inv = p.k.inverse();
+        set_effective_masses(p, Mat<N>((fa ? Mat<N>::Zero() : p.ka) + (fb ? Mat<N>::Zero() : p.kb)), c.normal);
       }
     }
     for (int it = 0; it < settings.shock_iterations; ++it)
@@ -138,7 +143,7 @@ void correct_positions(ContactState<N>& s, const ContactSettings& settings, doub
         if (excess <= 0.0) continue;
         const double target = settings.position_correction * excess / h;
         const double un = c.normal.dot(b.vp + dot<N>(p.rb, b.wp) - a.vp - dot<N>(p.ra, a.wp));
-        const double next = std::max(p.pseudo + p.normal_mass * (target - un), 0.0);
+        const double next = std::max(p.pseudo + p.pseudo_mass * (target - un), 0.0);
         const Vec<N> j = (next - p.pseudo) * c.normal;
         p.pseudo = next;
         a.vp -= a.inv_mass * j;
@@ -150,6 +155,62 @@ void correct_positions(ContactState<N>& s, const ContactSettings& settings, doub
 }
 
 }  // namespace
+
+// Sequential impulses on several points at once are not guaranteed to take energy out: restitution
+// with spin, and kinetic friction whose direction follows the slip, can return a little more than came
+// in. So each stage ends with a check per group of bodies joined by the stage's constraints: if the
+// group's kinetic energy rose, its velocity changes (equivalently, all its impulses) are scaled by the
+// alpha in [0, 1) that gives back the energy it had. Momentum is unchanged, and energy never rises.
+template <int N>
+void snapshot_velocities(ContactState<N>& s) {
+  for (SolverBody<N>& b : s.solver_bodies) {
+    b.v0 = b.v;
+    b.w0 = b.w;
+  }
+}
+
+template <int N>
+void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool restitutive_only) {
+  const int n = int(bodies.size());
+  s.union_parent.resize(n);
+  for (int i = 0; i < n; ++i) s.union_parent[i] = i;
+  auto root = [&s](int i) {
+    while (s.union_parent[i] != i) i = s.union_parent[i] = s.union_parent[s.union_parent[i]];
+    return i;
+  };
+  auto moves = [&](int i) { return s.solver_bodies[i].inv_mass > 0.0; };
+  for (const Constraint<N>& c : s.constraints)
+    if ((!restitutive_only || c.restitution > 0.0) && moves(c.a) && moves(c.b)) {
+      const int ra = root(c.a), rb = root(c.b);
+      if (ra != rb) s.union_parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  // Per group root: B = sum of p0 . dv terms, C = half the energy of the changes; E(alpha) = E0 + alpha B
+  // + alpha^2 C, so E(1) > E0 means B + C > 0.
+  std::vector<double>& lin = s.group_b;
+  std::vector<double>& quad = s.group_c;
+  lin.assign(n, 0.0);
+  quad.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (!moves(i)) continue;
+    const SolverBody<N>& b = s.solver_bodies[i];
+    const Vec<N> dv = b.v - b.v0;
+    const Bivector<N> dw = b.w - b.w0;
+    const BivMat<N> inertia = bodies[i].world_inertia();
+    const int r = root(i);
+    lin[r] += bodies[i].mass * b.v0.dot(dv) + b.w0.c.dot(inertia * dw.c);
+    quad[r] += 0.5 * (bodies[i].mass * dv.squaredNorm() + dw.c.dot(inertia * dw.c));
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!moves(i)) continue;
+    const int r = root(i);
+    const double b = lin[r], c = quad[r];
+    if (!(b + c > 1e-12 * std::abs(b)) || !(c > 0.0)) continue;
+    const double alpha = std::clamp(-b / c, 0.0, 1.0);
+    SolverBody<N>& sb = s.solver_bodies[i];
+    sb.v = sb.v0 + alpha * (sb.v - sb.v0);
+    sb.w = sb.w0 + (sb.w - sb.w0) * alpha;
+  }
+}
 
 template <int N>
 void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings,
@@ -163,6 +224,7 @@ void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const 
         any = any || (s.points[k].approach < 0.0 && s.points[k].gap + h * s.points[k].approach < 0.0);
   if (!any) return;
   load_velocities(s, bodies);
+  snapshot_velocities(s);
   for (int it = 0; it < settings.collision_iterations; ++it)
     for (const Constraint<N>& c : s.constraints) {
       if (c.restitution <= 0.0) continue;
@@ -174,14 +236,46 @@ void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const 
         solve_point(a, b, p, c, -c.restitution * p.approach);
       }
     }
+  limit_energy(s, bodies, true);
   finish_stage(s);
   store_velocities(s, bodies);
+}
+
+// Starts every point from the impulse its features received in the last step (applied at once), and
+// afterwards keeps this step's for the next one.
+template <int N>
+void warm_start(ContactState<N>& s) {
+  for (const Constraint<N>& c : s.constraints) {
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      p.normal_impulse = p.warm_normal;
+      p.tangent_impulse = p.warm_tangent;
+      apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+    }
+  }
+}
+template <int N>
+void keep_for_warm_start(ContactState<N>& s) {
+  for (const Constraint<N>& c : s.constraints) {
+    Pair<N>& pair = s.pairs[c.pair];
+    pair.warm_count = c.count;
+    for (int k = 0; k < c.count; ++k) {
+      const PointConstraint<N>& p = s.points[c.first + k];
+      pair.warm_id[k] = pair.manifold.points[k].id;
+      pair.warm_normal[k] = p.normal_impulse;
+      pair.warm_tangent[k] = p.tangent_impulse;
+    }
+  }
 }
 
 template <int N>
 void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
   if (s.constraints.empty()) return;
   load_velocities(s, bodies);
+  snapshot_velocities(s);
+  if (settings.warm_start) warm_start(s);
   for (int it = 0; it < settings.contact_iterations; ++it)
     for (const Constraint<N>& c : s.constraints) {
       SolverBody<N>& a = s.solver_bodies[c.a];
@@ -189,6 +283,8 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
       for (int k = c.first; k < c.first + c.count; ++k) solve_point(a, b, s.points[k], c, contact_target(s.points[k], h));
     }
   if (settings.shock_iterations > 0) shock_propagation(s, settings, h);
+  keep_for_warm_start(s);
+  limit_energy(s, bodies, false);
   finish_stage(s);
   correct_positions(s, settings, h);
   store_velocities(s, bodies);
