@@ -81,6 +81,7 @@ ContactSettings read_contact_settings(const Node& node) {
   ObjectReader obj(node);
   ContactSettings c;
   c.contact_margin = read_ranged(obj, "contact_margin", c.contact_margin, 0.0, 1e3, "in [0, 1000] m");
+  c.face_preference = read_ranged(obj, "face_preference", c.face_preference, 0.0, 1e3, "in [0, 1000] m");
   c.static_slip_speed = read_ranged(obj, "static_slip_speed", c.static_slip_speed, 0.0, 1e6, ">= 0 m/s");
   c.collision_iterations = read_count(obj, "collision_iterations", c.collision_iterations);
   c.contact_iterations = read_count(obj, "contact_iterations", c.contact_iterations);

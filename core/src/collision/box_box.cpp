@@ -35,10 +35,11 @@ struct BoxSat {
   Mat<N> c, abs_c;  // b's axes in a's frame, and their absolute values
   Vec<N> d;         // b's centre minus a's, in a's frame
   SatAxis<N> best;  // the normal is kept in a's frame until the end
-  double tie = 0.0, margin = 0.0;
+  double tie = 0.0, margin = 0.0, prefer = 0.0;
 
-  bool consider(double pen, const Vec<N>& axis_a, double along, int facet_a, int facet_b) {
-    if (pen < best.pen - tie) best = {pen, along < 0.0 ? Vec<N>(-axis_a) : axis_a, facet_a, facet_b};
+  // `slack`: how much shallower than the best so far the axis must be (face preference, mixed axes).
+  bool consider(double pen, const Vec<N>& axis_a, double along, int facet_a, int facet_b, double slack = 0.0) {
+    if (pen < best.pen - tie - slack) best = {pen, along < 0.0 ? Vec<N>(-axis_a) : axis_a, facet_a, facet_b};
     return pen >= -margin;
   }
 
@@ -69,7 +70,7 @@ struct BoxSat {
         }
         const double rb = (c.transpose() * axis).cwiseAbs().dot(hb);
         const double along = axis.dot(d);
-        if (!consider(ra + rb - std::abs(along), axis, along, -1, -1)) return false;
+        if (!consider(ra + rb - std::abs(along), axis, along, -1, -1, prefer)) return false;
       }
     }
     return true;
@@ -94,7 +95,7 @@ Manifold<N> box_box(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
   const Vec<N>& hb = b.template as<shapes::Box<N>>().half_extents;
   const Mat<N> c = ta.rotation.transpose() * tb.rotation;
   BoxSat<N> sat{ha, hb, c, c.cwiseAbs(), ta.rotation.transpose() * (tb.position - ta.position), SatAxis<N>{},
-                1e-9 * std::max(ha.norm(), hb.norm()), settings.contact_margin};
+                1e-9 * std::max(ha.norm(), hb.norm()), settings.contact_margin, settings.face_preference};
   Manifold<N> m;
   bool apart = false;
   for (int i = 0; i < N && !apart; ++i)  // a's faces: facet 2i + 1 is +e_i, 2i is -e_i

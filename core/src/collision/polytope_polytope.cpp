@@ -125,8 +125,9 @@ Manifold<N> polytope_polytope(const Shape<N>& a, const Transform<N>& ta, const S
 
   SatAxis<N> best;
   Manifold<N> m;
-  auto consider = [&](const SatAxis<N>& c) {
-    if (c.pen < best.pen - tie) best = c;
+  // `slack`: how much shallower than the best so far the axis must be (face preference, mixed axes).
+  auto consider = [&](const SatAxis<N>& c, double slack = 0.0) {
+    if (c.pen < best.pen - tie - slack) best = c;
     return c.pen >= -margin;  // false: separated beyond the margin, stop early
   };
 
@@ -152,7 +153,9 @@ Manifold<N> polytope_polytope(const Shape<N>& a, const Transform<N>& ta, const S
         min_max(va, u, lo, hi);
         min_max(vb, u, lo2, hi2);
         const double up = hi - lo2, down = hi2 - lo;  // overlap with b above a along u, and below
-        if (!consider(up <= down ? SatAxis<N>{up, u, -1, -1} : SatAxis<N>{down, Vec<N>(-u), -1, -1})) goto separated;
+        if (!consider(up <= down ? SatAxis<N>{up, u, -1, -1} : SatAxis<N>{down, Vec<N>(-u), -1, -1},
+                      settings.face_preference))
+          goto separated;
       }
 
   m.intersecting = best.pen >= 0.0;

@@ -35,8 +35,16 @@ struct Pair {
   int warm_count = 0;
   std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
   std::array<double, kMaxManifoldPoints<N>> warm_normal{};
-  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent{};
+  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
   bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }
+
+ private:
+  // Eigen vectors are not zeroed by {}; GCC rightly warns about copying them uninitialised.
+  static std::array<Vec<N>, kMaxManifoldPoints<N>> zero_vectors() {
+    std::array<Vec<N>, kMaxManifoldPoints<N>> v;
+    v.fill(Vec<N>::Zero());
+    return v;
+  }
 };
 
 // A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.

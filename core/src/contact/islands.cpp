@@ -98,7 +98,12 @@ void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const Cont
   for (int i = 0; i < n; ++i) {
     if (!movable(i)) continue;
     const Body<N>& b = bodies[i];
-    const double radius = 0.5 * s.box[i].extents().norm();
+    // A body without a shape can never be touched awake again, so it never sleeps.
+    if (s.proxy[i] < 0) {
+      s.sleep_time[i] = 0.0;
+      continue;
+    }
+    const double radius = s.box[i].extents().norm();  // bounds the distance from the centre of mass
     const double speed = b.velocity.norm() + b.angular_velocity.c.norm() * radius;
     s.sleep_time[i] = speed < settings.sleep_linear_speed ? s.sleep_time[i] + h : 0.0;
   }

@@ -98,6 +98,7 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
                   const ContactSettings& settings, double h) {
   CollisionSettings cs;
   cs.exact_separation = false;
+  cs.face_preference = settings.face_preference;
   for (Pair<N>& p : s.pairs) p.updated = false;
   auto active = [&](std::uint32_t i) { return bodies[i].is_dynamic() && s.awake[i]; };
   for (bool again = true; again;) {

@@ -45,14 +45,10 @@ void solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, cons
     const double t = next.norm(), limit = p.friction * p.normal_impulse;
     if (t > limit) {
       // Outside the cone. Kinetic friction opposes the slip (Coulomb); the clamped sticking impulse
-      // would not, since K couples the tangent directions through the rotation.
-      // A point that was sticking keeps the clamped direction until it slips for real.
+      // would not, since K couples the tangent directions through the rotation. A point that was
+      // sticking keeps the clamped direction until it slips for real.
       const double speed = slip.norm();
-      if (p.sliding && speed > 1e-12) {
-        next = slip * (-limit / speed);
-      } else {
-        next *= limit / t;
-      }
+      next = p.sliding && speed > 1e-12 ? Vec<N>(slip * (-limit / speed)) : Vec<N>(next * (limit / t));
     }
     apply_impulse(a, b, p, Vec<N>(next - old));
     p.tangent_impulse = next;
