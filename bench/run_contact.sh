@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Builds wedge_bench_contact (Release, build-bench/) and runs it with 5 repetitions; writes Google
+# Benchmark's JSON to bench/results/contact.json and prints the medians as a Markdown table, then the
+# ratios Wedge / peer engine and the goals of bench/README.md ("Contact").
+#
+# usage: bench/run_contact.sh [extra wedge_bench_contact flags, e.g. --benchmark_filter=Pyramid]
+# Env: BUILD_DIR (default build-bench), JOBS (default 2), REPS (default 5). A whole run takes ~15 min on
+# 2 cores, most of it the 10,000-tesseract pile.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${BUILD_DIR:-$root/build-bench}"
+cd "$root"
+if [[ -f "$build/CMakeCache.txt" ]]; then
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+else
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+cmake --build "$build" --target wedge_bench_contact -j "${JOBS:-2}"
+mkdir -p bench/results
+out=bench/results/contact.json
+"$build/bench/wedge_bench_contact" --benchmark_repetitions="${REPS:-5}" --benchmark_report_aggregates_only=true \
+  --benchmark_out="$out" --benchmark_out_format=json "$@"
+
+echo
+echo "Medians of ${REPS:-5} repetitions ($out):"
+/usr/bin/python3 bench/contact_table.py "$out"
