@@ -24,6 +24,14 @@ def short_name(run_name):
     return "/".join(p for p in run_name.split("/") if not p.startswith("iterations:"))
 
 
+def timed_steps(run_name):
+    """The fixed iteration count in the name (the aggregates' 'iterations' is the repetition count)."""
+    for part in run_name.split("/"):
+        if part.startswith("iterations:"):
+            return int(part.split(":")[1])
+    return None
+
+
 def fmt(value, unit=""):
     if value is None:
         return ""
@@ -59,17 +67,29 @@ def main():
         if name not in order:
             order.append(name)
 
-    print("| benchmark | CPU ms/step | steps/s | timed steps | awake | moving | pairs | max_pen (m) | top_dy (m) |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("| benchmark | CPU ms/step | steps/s | timed steps | awake | moving | pairs | max_pen (m) |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for name in order:
         if name in skipped:
-            print(f"| {name} | skipped: {skipped[name]} | | | | | | | |")
+            print(f"| {name} | skipped: {skipped[name]} | | | | | | |")
             continue
         b = medians[name]
         cpu = b["cpu_time"]
-        print(f"| {name} | {fmt(cpu)} | {1000.0 / cpu:.0f} | {b['iterations']} | {fmt(b.get('awake'))} | "
-              f"{fmt(b.get('moving'))} | {fmt(b.get('pairs'))} | {fmt(b.get('max_pen'))} | "
-              f"{fmt(b.get('top_dy'))} |")
+        print(f"| {name} | {fmt(cpu)} | {1000.0 / cpu:.0f} | {timed_steps(b['run_name'])} | "
+              f"{fmt(b.get('awake'))} | {fmt(b.get('moving'))} | {fmt(b.get('pairs'))} | "
+              f"{fmt(b.get('max_pen'))} |")
+
+    pyramids = [n for n in order if n.startswith("Pyramid2D_") and n in medians]
+    if pyramids:
+        print()
+        print("Does the pyramid stand? The top box against its initial pose (m, rad):")
+        print()
+        print("| benchmark | top_dx after warm-up | top_dy after warm-up | top_dy after timed steps | top_angle |")
+        print("|---|---:|---:|---:|---:|")
+        for name in pyramids:
+            b = medians[name]
+            print(f"| {name} | {fmt(b.get('top_dx'))} | {fmt(b.get('top_dy'))} | {fmt(b.get('top_dy_end'))} | "
+                  f"{fmt(b.get('top_angle'))} |")
 
     print()
     print("Ratios of the median CPU time per step:")
