@@ -32,6 +32,20 @@ def timed_steps(run_name):
     return None
 
 
+GROUPS = ["Pyramid2D_", "Pile3D_", "Pile4D_", "PaperScene/"]
+
+
+def sort_key(name):
+    """Scene, body count, sleeping off before on, Wedge before its peer (random interleaving shuffles
+    the JSON)."""
+    group = next((i for i, g in enumerate(GROUPS) if name.startswith(g)), len(GROUPS))
+    parts = name.split("/")
+    count = next((int(p) for p in parts if p.isdigit()), 0)
+    sleep = 1 if "sleep_on" in parts else 0
+    engine = 0 if "_Wedge" in parts[0] else 1
+    return (group, count, sleep, engine, name)
+
+
 def fmt(value, unit=""):
     if value is None:
         return ""
@@ -67,6 +81,7 @@ def main():
         if name not in order:
             order.append(name)
 
+    order.sort(key=sort_key)
     print("| benchmark | CPU ms/step | steps/s | timed steps | awake | moving | pairs | max_pen (m) |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for name in order:
