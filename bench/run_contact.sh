@@ -4,7 +4,7 @@
 # ratios Wedge / peer engine and the goals of bench/README.md ("Contact").
 #
 # usage: bench/run_contact.sh [extra wedge_bench_contact flags, e.g. --benchmark_filter=Pyramid]
-# Env: BUILD_DIR (default build-bench), JOBS (default 2), REPS (default 5). A whole run takes ~12 min on
+# Env: BUILD_DIR (default build-bench), JOBS (default 2), REPS (default 5). A whole run takes 12-17 min on
 # 2 cores, most of it the 10,000-tesseract pile.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
