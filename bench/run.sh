@@ -8,12 +8,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-bench}"
 cd "$root"
-if [[ -f "$build/CMakeCache.txt" ]]; then
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-else
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-cmake --build "$build" --target wedge_bench -j "${JOBS:-2}"
+bench/build_release.sh wedge_bench
 mkdir -p bench/results
 out=bench/results/core.json
 "$build/bench/wedge_bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
