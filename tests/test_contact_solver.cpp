@@ -7,6 +7,7 @@
 #include <random>
 
 #include "builders.hpp"
+#include "drift.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/world.hpp"
@@ -31,20 +32,6 @@ BodyDef<N> box(const Vec<N>& half, double density = 1000.0) {
 template <int N>
 BodyDef<N> ball(double radius, double density = 1000.0) {
   return body_def<N>(std::make_shared<const Shape<N>>(Shape<N>::ball(radius)), density);
-}
-
-// The largest distance any body's centre moved from where it started.
-template <int N>
-double max_drift(const World<N>& w, const std::vector<Vec<N>>& start) {
-  double d = 0.0;
-  for (int i = 0; i < w.body_count(); ++i) d = std::max(d, (w.bodies()[i].center - start[i]).norm());
-  return d;
-}
-template <int N>
-std::vector<Vec<N>> centres(const World<N>& w) {
-  std::vector<Vec<N>> c;
-  for (const Body<N>& b : w.bodies()) c.push_back(b.center);
-  return c;
 }
 
 // A box resting on the plane through the origin whose normal is turned by theta from x_1 towards x_0
@@ -81,11 +68,11 @@ TEST_CASE("a tower of 10 tesseracts stands for 60 s and no body drifts more than
     World<4> w(s);
     scenes::add_ground(w);
     scenes::add_box_tower(w, 10);
-    const auto start = centres(w);
+    const auto start = drift::centres(w);
     double worst = 0.0;
     for (int i = 0; i < 60 * 120; ++i) {
       w.step(1.0 / 120.0);
-      worst = std::max(worst, max_drift(w, start));
+      worst = std::max(worst, drift::largest(w, start));
     }
     INFO("sleeping " << sleep << ": largest drift " << worst << " m");
     CHECK(worst < 1e-3);

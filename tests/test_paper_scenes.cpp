@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "drift.hpp"
 #include "scene_json.hpp"
 #include "wedge/world.hpp"
 
@@ -19,20 +20,6 @@ World<N> load(const std::string& name, double& h) {
   return scene.make_world(name);
 }
 
-template <int N>
-double largest_drift(const World<N>& w, const std::vector<Vec<N>>& start) {
-  double d = 0.0;
-  for (int i = 0; i < w.body_count(); ++i) d = std::max(d, (w.bodies()[i].center - start[i]).norm());
-  return d;
-}
-
-template <int N>
-std::vector<Vec<N>> centres(const World<N>& w) {
-  std::vector<Vec<N>> c;
-  for (const Body<N>& b : w.bodies()) c.push_back(b.center);
-  return c;
-}
-
 }  // namespace
 
 TEST_CASE("fig1: the stack of three tesseracts stands for 60 s within 1 mm", "[scenes][contact][4d]") {
@@ -40,11 +27,11 @@ TEST_CASE("fig1: the stack of three tesseracts stands for 60 s within 1 mm", "[s
   for (const bool sleep : {false, true}) {
     World<4> w = load<4>("fig1_stack_4d.json", h);
     w.settings().contact.allow_sleep = sleep;
-    const auto start = centres(w);
+    const auto start = drift::centres(w);
     double worst = 0.0;
     for (int i = 0; i < int(60.0 / h); ++i) {
       w.step(h);
-      worst = std::max(worst, largest_drift(w, start));
+      worst = std::max(worst, drift::largest(w, start));
     }
     INFO("sleeping " << sleep << ": largest drift " << worst << " m");
     CHECK(worst < 1e-3);
@@ -92,12 +79,12 @@ TEST_CASE("fig2: the duocylinder hits the balls, nothing falls through the groun
 
 TEST_CASE("the 20-row box pyramids rest without collapsing (2D and 3D)", "[scenes][contact]") {
   auto check = [](auto world, double h) {
-    const auto start = centres(world);
+    const auto start = drift::centres(world);
     for (int i = 0; i < int(10.0 / h); ++i) world.step(h);
-    const double drift = largest_drift(world, start);
-    INFO("largest drift after 10 s: " << drift << " m");
+    const double moved = drift::largest(world, start);
+    INFO("largest drift after 10 s: " << moved << " m");
     // Resting: no box moved more than 1 cm (a collapse moves the top by metres).
-    CHECK(drift < 0.01);
+    CHECK(moved < 0.01);
   };
   double h = 0.0;
   {
