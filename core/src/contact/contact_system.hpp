@@ -169,6 +169,13 @@ void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);
 template <int N>
 void update_islands(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h);
 
+// Kinematic bodies with a velocity can hit sleeping bodies and keep them awake; resting ones behave
+// like static bodies.
+template <int N>
+inline bool moving_kinematic(const Body<N>& b) {
+  return b.type == BodyType::Kinematic && (b.velocity.squaredNorm() > 0.0 || b.angular_velocity.c.squaredNorm() > 0.0);
+}
+
 // Relative velocity of b with respect to a at the point: (v_b + r_b . w_b) - (v_a + r_a . w_a).
 template <int N>
 inline Vec<N> relative_velocity(const SolverBody<N>& a, const SolverBody<N>& b, const PointConstraint<N>& p) {

@@ -113,9 +113,7 @@ void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const Cont
       unite(s.union_parent, c.a, c.b);
     } else {
       const int other = ma ? c.b : c.a, self = ma ? c.a : c.b;
-      const Body<N>& o = bodies[other];
-      if (o.type == BodyType::Kinematic && (o.velocity.squaredNorm() > 0.0 || o.angular_velocity.c.squaredNorm() > 0.0))
-        s.sleep_time[self] = 0.0;
+      if (moving_kinematic(bodies[other])) s.sleep_time[self] = 0.0;
     }
   }
   // Smallest sleep time per island, kept at its root.

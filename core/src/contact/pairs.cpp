@@ -17,12 +17,6 @@ Transform<N> transform_of(const Body<N>& b) {
   return Transform<N>{b.position(), to_matrix(b.rotor)};
 }
 
-// Kinematic bodies with a velocity can hit sleeping bodies; resting ones behave like static bodies.
-template <int N>
-bool moving_kinematic(const Body<N>& b) {
-  return b.type == BodyType::Kinematic && (b.velocity.squaredNorm() > 0.0 || b.angular_velocity.c.squaredNorm() > 0.0);
-}
-
 // Moves the proxies of the bodies that can move, then lists the candidate pairs: the broad phase's,
 // plus each half-space with every dynamic body whose box reaches within the margin of its plane.
 template <int N>

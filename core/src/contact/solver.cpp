@@ -191,6 +191,7 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
     const SolverBody<N>& b = s.solver_bodies[i];
     const Vec<N> dv = b.v - b.v0;
     const Bivector<N> dw = b.w - b.w0;
+    if (dv.isZero(0.0) && dw.c.isZero(0.0)) continue;  // untouched by the stage: adds nothing
     const BivMat<N> inertia = bodies[i].world_inertia();
     const int r = root(i);
     lin[r] += bodies[i].mass * b.v0.dot(dv) + b.w0.c.dot(inertia * dw.c);
