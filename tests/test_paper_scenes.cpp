@@ -83,8 +83,9 @@ TEST_CASE("the 20-row box pyramids rest without collapsing (2D and 3D)", "[scene
     for (int i = 0; i < int(10.0 / h); ++i) world.step(h);
     const double moved = drift::largest(world, start);
     INFO("largest drift after 10 s: " << moved << " m");
-    // Resting: no box moved more than 1 cm (a collapse moves the top by metres).
-    CHECK(moved < 0.01);
+    // Resting: no box moved more than 2 mm (a collapse moves the top by metres; a warm start that loses
+    // points when the narrow phase swaps reference faces rocks the 2D pyramid by 6 mm; now 0.3 mm).
+    CHECK(moved < 0.002);
   };
   double h = 0.0;
   {

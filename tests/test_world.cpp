@@ -183,6 +183,23 @@ TEST_CASE("invalid bodies are refused with a clear error", "[world]") {
   CHECK_THROWS_WITH(world.add_body(d), Catch::Contains("finite"));
 }
 
+TEST_CASE("invalid contact settings are refused with a clear error", "[world][contact]") {
+  auto refused = [](auto change, const char* message) {
+    WorldSettings<3> s;
+    change(s.contact);
+    CHECK_THROWS_WITH(World<3>(s), Catch::Contains(message));
+  };
+  refused([](ContactSettings& c) { c.shock_tolerance = -1e-6; }, "shock_tolerance");
+  refused([](ContactSettings& c) { c.shock_tolerance = std::nan(""); }, "shock_tolerance");
+  refused([](ContactSettings& c) { c.shock_iterations = -1; }, "iteration counts");
+  refused([](ContactSettings& c) { c.static_slip_speed = INFINITY; }, "static_slip_speed");
+  refused([](ContactSettings& c) { c.position_correction = 0.0; }, "position_correction");
+  refused([](ContactSettings& c) { c.contact_margin = -0.01; }, "contact_margin");
+  WorldSettings<3> fine;
+  fine.contact.shock_tolerance = 0.0;  // always every pass: allowed
+  CHECK_NOTHROW(World<3>(fine));
+}
+
 // Landau & Lifshitz 37: for principal moments I1 < I2 < I3 and M^2 > 2 E I2, the components along axes
 // 1 and 2 are cn and sn of tau = t sqrt((I3-I2)(M^2-2EI1)/(I1 I2 I3)) with
 // k^2 = (I2-I1)(2EI3-M^2) / ((I3-I2)(M^2-2EI1)); the intermediate component flips sign every 2K(k).

@@ -31,11 +31,13 @@ struct Pair {
   bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
   int constraint = -1;     // index of its constraint in this step, or -1
   // Warm start: the contact-stage impulses of the last step per feature id, given back to the points
-  // that keep their id, so the iterations start from last step's answer.
+  // that continue them (same id, or same place), so the iterations start from last step's answer,
   int warm_count = 0;
   std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
   std::array<double, kMaxManifoldPoints<N>> warm_normal{};
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
+  // and their lever arms from a's centre (world frame), to match points whose id changed by place.
+  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_arm = zero_vectors();
   bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }
 
  private:

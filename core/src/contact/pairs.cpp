@@ -139,12 +139,43 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
   }
 }
 
+// Which of the last step's points each new point continues (-1: none): the one with the same feature
+// id, else the nearest one within `distance` (m) that no other point continues. Ids change when the
+// narrow phase swaps the reference face between two equal boxes, say, but the points stay put.
+template <int N>
+void warm_matches(const Pair<N>& p, const Vec<N>& centre_a, double distance,
+                  std::array<int, kMaxManifoldPoints<N>>& match) {
+  std::uint64_t taken = 0;  // bit w: old point w is continued (kMaxManifoldPoints <= 32)
+  for (int k = 0; k < p.manifold.count; ++k) {
+    match[k] = -1;
+    for (int w = 0; w < p.warm_count; ++w)
+      if (p.warm_id[w] == p.manifold.points[k].id && !(taken >> w & 1u)) {
+        match[k] = w;
+        taken |= std::uint64_t{1} << w;
+        break;
+      }
+  }
+  for (int k = 0; k < p.manifold.count; ++k) {
+    if (match[k] >= 0) continue;
+    const Vec<N> arm = p.manifold.points[k].point - centre_a;  // as warm_arm: from a's centre
+    double best = distance * distance;
+    for (int w = 0; w < p.warm_count; ++w) {
+      const double d2 = (p.warm_arm[w] - arm).squaredNorm();
+      if (!(taken >> w & 1u) && d2 < best) {
+        best = d2;
+        match[k] = w;
+      }
+    }
+    if (match[k] >= 0) taken |= std::uint64_t{1} << match[k];
+  }
+}
+
 // One constraint per pair with contact points and an awake dynamic body. Each point keeps its lever
 // arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper section 6), and takes the
 // static friction coefficient if it was not slipping at the start of the step, else the kinetic one.
 template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
-                       double slip_speed) {
+                       double slip_speed, double match_distance) {
   s.constraints.clear();
   s.points.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
@@ -172,6 +203,8 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     c.count = p.manifold.count;
     const SolverBody<N>& sa = s.solver_bodies[c.a];
     const SolverBody<N>& sb = s.solver_bodies[c.b];
+    std::array<int, kMaxManifoldPoints<N>> match;
+    warm_matches(p, bodies[c.a].center, match_distance, match);
     for (int k = 0; k < c.count; ++k) {
       const ContactPoint<N>& cp = p.manifold.points[k];
       PointConstraint<N> q;
@@ -189,12 +222,11 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       q.approach = c.normal.dot(u);
       q.sliding = (u - q.approach * c.normal).norm() > slip_speed;
       q.friction = q.sliding ? c.kinetic_friction : c.friction;
-      for (int w = 0; w < p.warm_count; ++w)
-        if (p.warm_id[w] == cp.id) {
-          q.warm_normal = p.warm_normal[w];
-          q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
-          break;
-        }
+      const int w = match[k];
+      if (w >= 0) {
+        q.warm_normal = p.warm_normal[w];
+        q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
+      }
       s.points.push_back(q);
     }
     p.constraint = int(s.constraints.size());
@@ -229,7 +261,7 @@ void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shape
   merge_pairs(s, bodies);
   narrow_phase(s, bodies, shapes, settings, h);
   load_solver_bodies(s, bodies);
-  build_constraints(s, bodies, materials, settings.static_slip_speed);
+  build_constraints(s, bodies, materials, settings.static_slip_speed, settings.contact_margin);
   compute_levels(s, bodies);
 }
 

@@ -35,10 +35,11 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
 // began), else mu j_n against the slip; then the normal impulse that brings the normal velocity to the
 // target, never pulling.
 template <int N>
-void solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
+double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
   const Vec<N>& n = c.normal;
+  Vec<N> u = relative_velocity(a, b, p);
+  Vec<N> friction = Vec<N>::Zero();  // this pass's change of the tangential impulse
   if (p.normal_impulse > 0.0 && p.friction > 0.0) {
-    const Vec<N> u = relative_velocity(a, b, p);
     const Vec<N> old = p.tangent_impulse;
     const Vec<N> slip = u - u.dot(n) * n;
     Vec<N> next = old - p.tangent_mass * slip;
@@ -50,13 +51,19 @@ void solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, cons
       const double speed = slip.norm();
       next = p.sliding && speed > 1e-12 ? Vec<N>(slip * (-limit / speed)) : Vec<N>(next * (limit / t));
     }
-    apply_impulse(a, b, p, Vec<N>(next - old));
+    friction = next - old;
     p.tangent_impulse = next;
+    // The point's velocity after the friction impulse, K j_t (K of the bodies that can move), so the
+    // bodies are updated once for both impulses.
+    if (!a.frozen) u += p.ka * friction;
+    if (!b.frozen) u += p.kb * friction;
   }
-  const double un = n.dot(relative_velocity(a, b, p));
+  const double un = n.dot(u);
   const double next = std::max(p.normal_impulse + p.normal_mass * (target - un), 0.0);
-  apply_impulse(a, b, p, Vec<N>((next - p.normal_impulse) * n));
+  const double change = next - p.normal_impulse;
+  apply_impulse(a, b, p, Vec<N>(friction + change * n));
   p.normal_impulse = next;
+  return std::abs(change) / p.normal_mass;  // m/s: how much the point's normal velocity changed
 }
 
 template <int N>
@@ -94,7 +101,9 @@ void finish_stage(ContactState<N>& s) {
 
 // Shock propagation: the contact graph's levels in increasing order; at each level the bodies of lower
 // levels (and static and kinematic bodies) are frozen, so the level's bodies come to rest on them
-// without pushing them down. Constraints whose bodies are out of reach of any static body are skipped.
+// without pushing them down. A level is done after shock_iterations passes, or sooner once a pass
+// changes no point's normal velocity by more than shock_tolerance: most levels of a resting heap
+// converge in a few passes. Constraints whose bodies are out of reach of any static body are skipped.
 template <int N>
 void shock_propagation(ContactState<N>& s, const ContactSettings& settings, double h) {
   const std::size_t count = s.shock_order.size();
@@ -111,16 +120,20 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         set_effective_masses(p, Mat<N>((fa ? Mat<N>::Zero() : p.ka) + (fb ? Mat<N>::Zero() : p.kb)), c.normal);
       }
     }
-    for (int it = 0; it < settings.shock_iterations; ++it)
+    for (int it = 0; it < settings.shock_iterations; ++it) {
+      double largest = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
         const Constraint<N>& c = s.constraints[s.shock_order[i]];
         SolverBody<N>& a = s.solver_bodies[c.a];
         SolverBody<N>& b = s.solver_bodies[c.b];
         a.frozen = a.level < level;
         b.frozen = b.level < level;
-        for (int k = c.first; k < c.first + c.count; ++k) solve_point(a, b, s.points[k], c, contact_target(s.points[k], h));
+        for (int k = c.first; k < c.first + c.count; ++k)
+          largest = std::max(largest, solve_point(a, b, s.points[k], c, contact_target(s.points[k], h)));
         a.frozen = b.frozen = false;
       }
+      if (largest <= settings.shock_tolerance) break;
+    }
     begin = end;
   }
 }
@@ -261,6 +274,7 @@ void keep_for_warm_start(ContactState<N>& s) {
     for (int k = 0; k < c.count; ++k) {
       const PointConstraint<N>& p = s.points[c.first + k];
       pair.warm_id[k] = pair.manifold.points[k].id;
+      pair.warm_arm[k] = p.ra;
       pair.warm_normal[k] = p.normal_impulse;
       pair.warm_tangent[k] = p.tangent_impulse;
     }
