@@ -20,8 +20,9 @@ int shared(const std::uint64_t a_own, const std::uint64_t a_clip, const std::uin
 template <int N>
 void clip_face(std::vector<ClipPoint<N>>& face, const std::vector<Vec<N>>& normals, const std::vector<double>& offsets,
                double eps) {
-  std::vector<ClipPoint<N>> next;
-  std::vector<double> dist;
+  // Scratch kept per thread: the narrow phase runs this for every face pair of every step.
+  thread_local std::vector<ClipPoint<N>> next;
+  thread_local std::vector<double> dist;
   for (std::size_t p = 0; p < normals.size() && !face.empty(); ++p) {
     const std::uint64_t bit = std::uint64_t(1) << (p % 64);  // more than 64 planes alias: extra points only
     dist.resize(face.size());

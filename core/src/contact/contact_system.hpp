@@ -116,6 +116,7 @@ struct ContactState {
   std::vector<Aabb<N>> box;               // per body: tight world box at the last update
   std::vector<std::uint32_t> halfspaces;  // bodies whose shape is a half-space
   std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
+  std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, merged_pairs;  // scratch for the merge
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
 
   std::vector<SolverBody<N>> solver_bodies;  // per body

@@ -28,6 +28,9 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     s.broad_phase.move_proxy(s.proxy[i], s.box[i], Vec<N>(b.velocity * h));
   }
   s.broad_phase.update_pairs(s.candidate_pairs);
+  if (s.halfspaces.empty()) return;
+  // The half-space pairs, sorted, merged into the broad phase's sorted list.
+  s.halfspace_pairs.clear();
   const double margin = s.broad_phase.settings().margin;
   for (const std::uint32_t hs : s.halfspaces) {
     const Body<N>& g = bodies[hs];
@@ -40,11 +43,15 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
       double low = 0.0;  // the box's lowest point along n
       for (int k = 0; k < N; ++k) low += n[k] * (n[k] > 0.0 ? box.lo[k] : box.hi[k]);
       if (low <= offset + margin)
-        s.candidate_pairs.emplace_back(std::min<std::uint32_t>(hs, std::uint32_t(i)),
+        s.halfspace_pairs.emplace_back(std::min<std::uint32_t>(hs, std::uint32_t(i)),
                                        std::max<std::uint32_t>(hs, std::uint32_t(i)));
     }
   }
-  if (!s.halfspaces.empty()) std::sort(s.candidate_pairs.begin(), s.candidate_pairs.end());
+  std::sort(s.halfspace_pairs.begin(), s.halfspace_pairs.end());
+  s.merged_pairs.resize(s.candidate_pairs.size() + s.halfspace_pairs.size());
+  std::merge(s.candidate_pairs.begin(), s.candidate_pairs.end(), s.halfspace_pairs.begin(), s.halfspace_pairs.end(),
+             s.merged_pairs.begin());
+  s.candidate_pairs.swap(s.merged_pairs);
 }
 
 // The new pair list, carrying each surviving pair's manifold and touching state over; a pair that

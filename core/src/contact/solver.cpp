@@ -10,6 +10,7 @@
 // that close within the step, giving them the separating speed -e u_n. Contact processing (after it)
 // allows every point to close its gap exactly, u_n >= -max(g, 0)/h, and no more.
 #include <algorithm>
+#include <cmath>
 #include <Eigen/LU>
 
 #include "contact/contact_system.hpp"
@@ -43,8 +44,9 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
     const Vec<N> old = p.tangent_impulse;
     const Vec<N> slip = u - u.dot(n) * n;
     Vec<N> next = old - p.tangent_mass * slip;
-    const double t = next.norm(), limit = p.friction * p.normal_impulse;
-    if (t > limit) {
+    const double t2 = next.squaredNorm(), limit = p.friction * p.normal_impulse;
+    if (t2 > limit * limit) {  // (no square root for the usual point that sticks)
+      const double t = std::sqrt(t2);
       // Outside the cone. Kinetic friction opposes the slip (Coulomb); the clamped sticking impulse
       // would not, since K couples the tangent directions through the rotation. A point that was
       // sticking keeps the clamped direction until it slips for real.
