@@ -92,11 +92,37 @@ void sat_manifold(const ConvexFeatures<N>& fa, const Transform<N>& ta, const Con
       add_span(vb, sb, -1.0);
       sys.conservativeResize(N, sys.cols() + 1);
       sys.col(sys.cols() - 1) = -u;
-      // pa + sum x_i (a's directions) = pb + sum y_j (b's directions) + delta u
-      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, N, 1> x =
-          sys.colPivHouseholderQr().solve(Vec<N>(vb[sb[0]] - va[sa[0]]));
+      // pa + sum x_i (a's directions) = pb + sum y_j (b's directions) + delta u. Nearly parallel
+      // features make the system nearly singular: a rank-revealing solve drops the dependent
+      // directions (their coefficients are 0) instead of sending the point metres away.
+      auto qr = sys.colPivHouseholderQr();
+      qr.setThreshold(1e-6);
+      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, N, 1> x = qr.solve(Vec<N>(vb[sb[0]] - va[sa[0]]));
       Vec<N> pa = va[sa[0]];
       for (Eigen::Index i = 0; i < from_a; ++i) pa += x[i] * sys.col(i);
+      // pa should lie on a, and pa - pen u on b. Where the closest approach of the features' spans
+      // falls beyond either feature (nearly parallel features), take the centre of the features'
+      // overlap instead: the mean of the vertices of each feature that lie within the other body.
+      auto inside = [&](const ConvexFeatures<N>& f, const Transform<N>& t, const Vec<N>& p) {
+        const Vec<N> local = t.rotation.transpose() * (p - t.position);
+        for (const auto& facet : f.facets)
+          if (!(facet.normal.dot(local) - facet.offset <= 1e-6 * scale)) return false;
+        return true;
+      };
+      if (!inside(fa, ta, pa) || !inside(fb, tb, Vec<N>(pa - best.pen * u))) {
+        Vec<N> sum = Vec<N>::Zero(), ca = Vec<N>::Zero(), cb = Vec<N>::Zero();
+        int count = 0;
+        for (int i : sa) {
+          ca += va[i];
+          if (inside(fb, tb, Vec<N>(va[i] - best.pen * u))) sum += va[i], ++count;
+        }
+        for (int i : sb) {
+          cb += vb[i];
+          if (inside(fa, ta, Vec<N>(vb[i] + best.pen * u))) sum += vb[i] + best.pen * u, ++count;
+        }
+        pa = count > 0 ? Vec<N>(sum / double(count))
+                       : Vec<N>(0.5 * (ca / double(sa.size()) + cb / double(sb.size())) + 0.5 * best.pen * u);
+      }
       std::uint64_t id = 3;
       for (int i : sa) id = mix_id(id, std::uint64_t(i));
       for (int i : sb) id = mix_id(id, std::uint64_t(i) << 32);
