@@ -80,6 +80,7 @@ struct PointConstraint {
   double approach = 0.0;                            // m/s, normal velocity at the start (< 0 closing)
   double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
   bool sliding = false;   // it was slipping: kinetic friction, against the slip
+  Vec<N> slip_direction = Vec<N>::Zero();  // unit, the tangential slip when the step began (if sliding)
   double normal_impulse = 0.0;                      // N s, accumulated in the current stage
   Vec<N> tangent_impulse = Vec<N>::Zero();          // N s, likewise (friction)
   double normal_total = 0.0;                        // N s, over all stages (events, ContactInfo)

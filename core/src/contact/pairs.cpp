@@ -227,7 +227,10 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       q.gap = -cp.depth;
       const Vec<N> u = relative_velocity(sa, sb, q);
       q.approach = c.normal.dot(u);
-      q.sliding = (u - q.approach * c.normal).norm() > slip_speed;
+      const Vec<N> slip = u - q.approach * c.normal;
+      const double slip_norm = slip.norm();
+      q.sliding = slip_norm > slip_speed;
+      if (q.sliding) q.slip_direction = slip / slip_norm;
       q.friction = q.sliding ? c.kinetic_friction : c.friction;
       const int w = match[k];
       if (w >= 0) {

@@ -46,12 +46,12 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
     Vec<N> next = old - p.tangent_mass * slip;
     const double t2 = next.squaredNorm(), limit = p.friction * p.normal_impulse;
     if (t2 > limit * limit) {  // (no square root for the usual point that sticks)
-      const double t = std::sqrt(t2);
-      // Outside the cone. Kinetic friction opposes the slip (Coulomb); the clamped sticking impulse
-      // would not, since K couples the tangent directions through the rotation. A point that was
-      // sticking keeps the clamped direction until it slips for real.
-      const double speed = slip.norm();
-      next = p.sliding && speed > 1e-12 ? Vec<N>(slip * (-limit / speed)) : Vec<N>(next * (limit / t));
+      // Outside the cone. Kinetic friction opposes the slip the point had when the step began
+      // (Coulomb; Guendelman et al.). Not the slip left after the last pass: once nearly stopped, that
+      // points anywhere, and the full mu_k j_n swinging after it shook piles by 0.1 m/s per pass. A
+      // point that was sticking keeps the clamped direction until it slips for real (the clamped
+      // sticking impulse does not oppose the slip: K couples the tangent directions through rotation).
+      next = p.sliding ? Vec<N>(p.slip_direction * -limit) : Vec<N>(next * (limit / std::sqrt(t2)));
     }
     friction = next - old;
     p.tangent_impulse = next;
