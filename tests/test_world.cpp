@@ -181,6 +181,13 @@ TEST_CASE("invalid bodies are refused with a clear error", "[world]") {
   d = box_body<4>(vec<4>({1, 1, 1, 1}));
   d.velocity[2] = std::nan("");
   CHECK_THROWS_WITH(world.add_body(d), Catch::Contains("finite"));
+  // Positive and finite, but 1/m and I^-1 overflow: contact impulses would turn into NaN.
+  d = box_body<4>(vec<4>({1, 1, 1, 1}));
+  d.mass = 1e-320;
+  CHECK_THROWS_WITH(world.add_body(d), Catch::Contains("mass must be positive and finite"));
+  d = box_body<4>(vec<4>({1, 1, 1, 1}));
+  d.inertia = BivMat<4>::Identity() * 1e-320;
+  CHECK_THROWS_WITH(world.add_body(d), Catch::Contains("too small to invert"));
 }
 
 TEST_CASE("invalid contact settings are refused with a clear error", "[world][contact]") {

@@ -43,7 +43,7 @@ Body<N> make_body(const BodyDef<N>& def) {
   b.velocity = def.velocity;
   b.angular_velocity = def.angular_velocity;
   if (def.type == BodyType::Kinematic) return b;
-  if (!(def.mass > 0.0) || !std::isfinite(def.mass))
+  if (!(def.mass > 0.0) || !std::isfinite(def.mass) || !std::isfinite(1.0 / def.mass))
     throw Error(who + ": mass must be positive and finite (got " + std::to_string(def.mass) + ")");
   if (!finite(def.inertia) || (def.inertia - def.inertia.transpose()).norm() > 1e-9 * def.inertia.norm())
     throw Error(who + ": inertia must be a finite symmetric matrix");
@@ -54,6 +54,7 @@ Body<N> make_body(const BodyDef<N>& def) {
   b.inv_mass = 1.0 / def.mass;
   b.inertia = 0.5 * (def.inertia + def.inertia.transpose());
   b.inv_inertia = b.inertia.inverse();
+  if (!b.inv_inertia.allFinite()) throw Error(who + ": inertia is too small to invert (its inverse overflows)");
   b.inv_inertia = 0.5 * (b.inv_inertia + b.inv_inertia.transpose()).eval();
   return b;
 }

@@ -10,6 +10,7 @@
 // function of the state alone (bit-identical on every run).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -91,11 +92,17 @@ struct PointConstraint {
 };
 
 // The effective masses of K for a contact with normal n.
+// A point whose K is not finite and positive (a lever arm from a broken manifold point) gets zero
+// effective masses, so it never receives an impulse instead of turning the bodies' velocities to NaN.
 template <int N>
 inline void set_effective_masses(PointConstraint<N>& p, const Mat<N>& k, const Vec<N>& n) {
   p.normal_mass = 1.0 / n.dot(k * n);
   const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
   p.tangent_mass = (proj * k * proj + n * n.transpose()).inverse();
+  if (!(std::isfinite(p.normal_mass) && p.normal_mass >= 0.0) || !p.tangent_mass.allFinite()) {
+    p.normal_mass = 0.0;
+    p.tangent_mass.setZero();
+  }
 }
 
 template <int N>

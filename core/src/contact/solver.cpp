@@ -65,7 +65,7 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
   const double change = next - p.normal_impulse;
   apply_impulse(a, b, p, Vec<N>(friction + change * n));
   p.normal_impulse = next;
-  return std::abs(change) / p.normal_mass;  // m/s: how much the point's normal velocity changed
+  return change == 0.0 ? 0.0 : std::abs(change) / p.normal_mass;  // m/s: the point's normal velocity change
 }
 
 template <int N>
