@@ -117,6 +117,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
     for (std::size_t i = begin; i < end; ++i) {
       const Constraint<N>& c = s.constraints[s.shock_order[i]];
       const bool fa = s.solver_bodies[c.a].level < level, fb = s.solver_bodies[c.b].level < level;
+      if (!fa && !fb) continue;  // both move: K is the pair's, as build_constraints left it
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.points[k];
         set_effective_masses(p, Mat<N>((fa ? Mat<N>::Zero() : p.ka) + (fb ? Mat<N>::Zero() : p.kb)), c.normal);
