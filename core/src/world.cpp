@@ -289,7 +289,17 @@ void World<N>::integrate_positions(double h) {
     if (b.type == BodyType::Static || !contact_->awake[i]) continue;
     const contact::SolverBody<N>& pseudo = contact_->solver_bodies[i];
     b.center += h * (b.velocity + pseudo.vp);
-    b.rotor = exp<N>((b.angular_velocity + pseudo.wp) * (-0.5 * h)) * b.rotor;
+    if (pseudo.wp.c.isZero(0.0)) {
+      b.rotor = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
+    } else {
+      // The split impulse turns the body further than its spin does. Turning the angular velocity
+      // along by that extra turn Q keeps it the same in the body frame, so the correction moves the
+      // body without changing its kinetic energy (1/2 w . I' w would otherwise change with I').
+      const Rotor<N> spun = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
+      const Rotor<N> next = exp<N>((b.angular_velocity + pseudo.wp) * (-0.5 * h)) * b.rotor;
+      b.angular_velocity = rotate(next * reverse(spun), b.angular_velocity);
+      b.rotor = next;
+    }
     if (repair_now) b.rotor = repair(b.rotor);
   }
 }

@@ -63,6 +63,7 @@ struct SolverBody {
   BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
   int level = 0;                               // contact-graph level (shock propagation)
   bool frozen = false;                         // infinite mass for the current shock-propagation level
+  std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
 };
 
 // One contact point: lever arms, the parts of K = delta/m + [r]_*^T I^-1 [r]_* from each body, the
@@ -113,6 +114,8 @@ struct Constraint {
   double friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
   int first = 0, count = 0;  // points[first .. first + count)
   int level = 0;             // max of the bodies' levels (shock propagation order)
+  std::uint64_t shock_tick = 0;  // shock propagation: its last visit (see SolverBody::moved)
+  double shock_change = 0.0;     // m/s, the largest normal velocity change of that visit
 };
 
 // Everything the contact stages keep between and during steps. Plain data: the stages are free

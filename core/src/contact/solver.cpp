@@ -40,7 +40,9 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
   const Vec<N>& n = c.normal;
   Vec<N> u = relative_velocity(a, b, p);
   Vec<N> friction = Vec<N>::Zero();  // this pass's change of the tangential impulse
-  if (p.normal_impulse > 0.0 && p.friction > 0.0) {
+  // (A point whose normal impulse has dropped to zero still has its friction taken back to zero here:
+  // friction without a normal force would be outside every cone.)
+  if (p.friction > 0.0 && (p.normal_impulse > 0.0 || !p.tangent_impulse.isZero(0.0))) {
     const Vec<N> old = p.tangent_impulse;
     const Vec<N> slip = u - u.dot(n) * n;
     Vec<N> next = old - p.tangent_mass * slip;
@@ -51,7 +53,10 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
       // points anywhere, and the full mu_k j_n swinging after it shook piles by 0.1 m/s per pass. A
       // point that was sticking keeps the clamped direction until it slips for real (the clamped
       // sticking impulse does not oppose the slip: K couples the tangent directions through rotation).
-      next = p.sliding ? Vec<N>(p.slip_direction * -limit) : Vec<N>(next * (limit / std::sqrt(t2)));
+      // Once the slip has turned against its first direction, that impulse would push it on and do
+      // work: such a point is clamped like a sticking one (in heaps it had kept boxes jittering).
+      const bool forward = p.sliding && slip.dot(p.slip_direction) > 0.0;
+      next = forward ? Vec<N>(p.slip_direction * -limit) : Vec<N>(next * (limit / std::sqrt(t2)));
     }
     friction = next - old;
     p.tangent_impulse = next;
@@ -109,6 +114,8 @@ void finish_stage(ContactState<N>& s) {
 template <int N>
 void shock_propagation(ContactState<N>& s, const ContactSettings& settings, double h) {
   const std::size_t count = s.shock_order.size();
+  std::uint64_t tick = 0;  // counts constraint visits; SolverBody::moved and Constraint::shock_tick use it
+  for (SolverBody<N>& b : s.solver_bodies) b.moved = 0;
   for (std::size_t begin = 0; begin < count;) {
     const int level = s.constraints[s.shock_order[begin]].level;
     std::size_t end = begin;
@@ -123,17 +130,30 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         set_effective_masses(p, Mat<N>((fa ? Mat<N>::Zero() : p.ka) + (fb ? Mat<N>::Zero() : p.kb)), c.normal);
       }
     }
+    // After the first pass a constraint is visited again only while it can still change by more than
+    // the tolerance: its own last visit did, or a neighbour has since moved one of its bodies by more.
+    // In a heap this leaves the later passes to the few slow faces instead of the whole level.
     for (int it = 0; it < settings.shock_iterations; ++it) {
       double largest = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
-        const Constraint<N>& c = s.constraints[s.shock_order[i]];
+        Constraint<N>& c = s.constraints[s.shock_order[i]];
         SolverBody<N>& a = s.solver_bodies[c.a];
         SolverBody<N>& b = s.solver_bodies[c.b];
+        if (it > 0 && c.shock_change <= settings.shock_tolerance && a.moved <= c.shock_tick && b.moved <= c.shock_tick)
+          continue;
         a.frozen = a.level < level;
         b.frozen = b.level < level;
+        double change = 0.0;
         for (int k = c.first; k < c.first + c.count; ++k)
-          largest = std::max(largest, solve_point(a, b, s.points[k], c, contact_target(s.points[k], h)));
+          change = std::max(change, solve_point(a, b, s.points[k], c, contact_target(s.points[k], h)));
+        c.shock_tick = ++tick;
+        c.shock_change = change;
+        if (change > settings.shock_tolerance) {
+          if (!a.frozen) a.moved = tick;
+          if (!b.frozen) b.moved = tick;
+        }
         a.frozen = b.frozen = false;
+        largest = std::max(largest, change);
       }
       if (largest <= settings.shock_tolerance) break;
     }
