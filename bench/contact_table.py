@@ -15,7 +15,8 @@ PAIRS = [
     ("Pile3D_Wedge/sleep_off", "Pile3D_Bullet/sleep_off", "bullet", 1.0),
     ("Pile3D_Wedge/sleep_on", "Pile3D_Bullet/sleep_on", "bullet", 1.0),
 ]
-STEP_GOALS_MS = {"Pile4D_Wedge/1000/sleep_off": 4.0, "Pile4D_Wedge/1000/sleep_on": 4.0}
+STEP_GOALS_MS = {"Pile4D_Wedge/1000/sleep_off": 4.0, "Pile4D_Wedge/1000/sleep_on": 4.0,
+                 "Pile4D_Wedge/1000/settled": 4.0}
 SCENE_GOAL_STEPS_PER_S = 2000.0
 
 
