@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "contact/contact_system.hpp"
 #include "wedge/error.hpp"
@@ -43,8 +44,11 @@ Body<N> make_body(const BodyDef<N>& def) {
   b.velocity = def.velocity;
   b.angular_velocity = def.angular_velocity;
   if (def.type == BodyType::Kinematic) return b;
-  if (!(def.mass > 0.0) || !std::isfinite(def.mass) || !std::isfinite(1.0 / def.mass))
-    throw Error(who + ": mass must be positive and finite (got " + std::to_string(def.mass) + ")");
+  if (!(def.mass > 0.0) || !std::isfinite(def.mass) || !std::isfinite(1.0 / def.mass)) {
+    std::ostringstream s;  // (std::to_string would print 1e-320 as 0.000000)
+    s << who << ": mass must be positive and finite, with a finite inverse (got " << def.mass << ")";
+    throw Error(s.str());
+  }
   if (!finite(def.inertia) || (def.inertia - def.inertia.transpose()).norm() > 1e-9 * def.inertia.norm())
     throw Error(who + ": inertia must be a finite symmetric matrix");
   Eigen::SelfAdjointEigenSolver<BivMat<N>> eig(def.inertia, Eigen::EigenvaluesOnly);
