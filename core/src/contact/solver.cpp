@@ -111,6 +111,13 @@ void finish_stage(ContactState<N>& s) {
 // without pushing them down. A level is done after shock_iterations passes, or sooner once a pass
 // changes no point's normal velocity by more than shock_tolerance: most levels of a resting heap
 // converge in a few passes. Constraints whose bodies are out of reach of any static body are skipped.
+//
+// A level also stops once its passes no longer converge: when a pass changes some velocity by as much
+// as the pass before the last did (two passes, so that a zig-zag of a converging level is not taken for
+// a stall). This happens when frozen supports move in ways no velocity of the bodies above can match
+// (a box on two supports that move apart): Gauss-Seidel then cycles with a fixed amplitude instead of
+// converging. Those cycles did harm, not just cost: their last pass leaves a random part of the
+// mismatch in the velocities, and in 2D heaps that pumped columns of boxes into rocking for good.
 template <int N>
 void shock_propagation(ContactState<N>& s, const ContactSettings& settings, double h) {
   const std::size_t count = s.shock_order.size();
@@ -133,6 +140,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
     // After the first pass a constraint is visited again only while it can still change by more than
     // the tolerance: its own last visit did, or a neighbour has since moved one of its bodies by more.
     // In a heap this leaves the later passes to the few slow faces instead of the whole level.
+    double last = 0.0, before_last = 0.0;  // m/s, the largest change of the last two passes
     for (int it = 0; it < settings.shock_iterations; ++it) {
       double largest = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
@@ -155,7 +163,9 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         a.frozen = b.frozen = false;
         largest = std::max(largest, change);
       }
-      if (largest <= settings.shock_tolerance) break;
+      if (largest <= settings.shock_tolerance || (it >= 2 && largest >= before_last)) break;
+      before_last = last;
+      last = largest;
     }
     begin = end;
   }
