@@ -85,7 +85,7 @@ TEMPLATE_TEST_CASE_SIG("a heap of 100 boxes dropped on the ground comes to rest"
   // static equilibrium, so once it has settled nothing may move. Bound on each body's fastest point:
   // |v| + |w| r, r = half diagonal, over the 2 s after `settle` (in 2D the grid is 10 columns of 10,
   // which topple one after another until about 17 s). The bound allows 1 mm/s; measured in the checked
-  // window: 2e-7 m/s (2D), 5e-6 m/s (3D), 6e-15 m/s (4D). Two solvers of the past fail it:
+  // window: 2e-7 m/s (2D), 5e-6 m/s (3D), 3e-16 m/s (4D). Two solvers of the past fail it:
   //  - friction that pushed along a slip that had reversed within the step (410f1f3) kept the 3D heap
   //    at 0.12 m/s;
   //  - shock propagation that ran a level's cycling passes to the cap (117902b) kept 19 boxes of the 2D

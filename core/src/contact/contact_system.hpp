@@ -66,14 +66,14 @@ struct SolverBody {
   std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
 };
 
-// One contact point: lever arms, the parts of K = delta/m + [r]_*^T I^-1 [r]_* from each body, the
+// One contact point: lever arms, K = delta/m + [r]_*^T I^-1 [r]_* (summed over the bodies), the
 // effective masses along the normal and in the tangent space, and the accumulated impulses of the
 // current stage.
 template <int N>
 struct PointConstraint {
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
   Eigen::Matrix<double, kBiv<N>, N> wa, wb;         // I^-1 [r]_* for each body (angular change per impulse)
-  Mat<N> ka, kb;                                    // each body's part of K
+  Mat<N> k;  // K of the bodies that can move: the pair's, or the unfrozen body's in shock propagation
   // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
   // that makes it (of the pair, or of the unfrozen body during shock propagation).
   Mat<N> tangent_mass;

@@ -220,9 +220,8 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
       q.wa = sa.inv_inertia * ja;
       q.wb = sb.inv_inertia * jb;
-      q.ka = sa.inv_mass * Mat<N>::Identity() + ja.transpose() * q.wa;
-      q.kb = sb.inv_mass * Mat<N>::Identity() + jb.transpose() * q.wb;
-      set_effective_masses(q, Mat<N>(q.ka + q.kb), c.normal);
+      q.k = (sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb;
+      set_effective_masses(q, q.k, c.normal);
       q.pseudo_mass = q.normal_mass;
       q.gap = -cp.depth;
       const Vec<N> u = relative_velocity(sa, sb, q);

@@ -62,8 +62,7 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
     p.tangent_impulse = next;
     // The point's velocity after the friction impulse, K j_t (K of the bodies that can move), so the
     // bodies are updated once for both impulses.
-    if (!a.frozen) u += p.ka * friction;
-    if (!b.frozen) u += p.kb * friction;
+    u += p.k * friction;
   }
   const double un = n.dot(u);
   const double next = std::max(p.normal_impulse + p.normal_mass * (target - un), 0.0);
@@ -127,14 +126,21 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
     const int level = s.constraints[s.shock_order[begin]].level;
     std::size_t end = begin;
     while (end < count && s.constraints[s.shock_order[end]].level == level) ++end;
-    // K of the unfrozen bodies only.
+    // K of the unfrozen body only. (A frozen body that cannot move anyway, static, kinematic or
+    // asleep, adds nothing to the pair's K, which then stays as build_constraints left it.)
     for (std::size_t i = begin; i < end; ++i) {
       const Constraint<N>& c = s.constraints[s.shock_order[i]];
-      const bool fa = s.solver_bodies[c.a].level < level, fb = s.solver_bodies[c.b].level < level;
-      if (!fa && !fb) continue;  // both move: K is the pair's, as build_constraints left it
+      const SolverBody<N>& a = s.solver_bodies[c.a];
+      const SolverBody<N>& b = s.solver_bodies[c.b];
+      const bool fa = a.level < level && a.inv_mass > 0.0, fb = b.level < level && b.inv_mass > 0.0;
+      if (!fa && !fb) continue;
+      const SolverBody<N>& moving = fa ? b : a;
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.points[k];
-        set_effective_masses(p, Mat<N>((fa ? Mat<N>::Zero() : p.ka) + (fb ? Mat<N>::Zero() : p.kb)), c.normal);
+        const Vec<N>& r = fa ? p.rb : p.ra;
+        const auto& w = fa ? p.wb : p.wa;  // I^-1 [r]_* of the moving body
+        p.k = moving.inv_mass * Mat<N>::Identity() + wedge_matrix<N>(r).transpose() * w;
+        set_effective_masses(p, p.k, c.normal);
       }
     }
     // After the first pass a constraint is visited again only while it can still change by more than
