@@ -327,6 +327,8 @@ TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli
          {"name": "a", "shape": {"type": "sphere", "radius": 1}}]})", "--steps 1", "bodies[1]"},
       {"negative shock tolerance", R"({"dim": 2, "contact": {"shock_tolerance": -1e-6}, "bodies": []})", "--steps 1",
        "contact.shock_tolerance"},
+      {"negative contact tolerance", R"({"dim": 2, "contact": {"contact_tolerance": -1}, "bodies": []})", "--steps 1",
+       "contact.contact_tolerance"},
       {"negative contact iterations", R"({"dim": 2, "contact": {"contact_iterations": -1}, "bodies": []})",
        "--steps 1", "contact.contact_iterations"},
       {"unknown contact key", R"({"dim": 2, "contact": {"shock_tol": 1}, "bodies": []})", "--steps 1", "contact.shock_tol"},

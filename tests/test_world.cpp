@@ -200,11 +200,14 @@ TEST_CASE("invalid contact settings are refused with a clear error", "[world][co
   refused([](ContactSettings& c) { c.shock_tolerance = -1e-6; }, "shock_tolerance");
   refused([](ContactSettings& c) { c.shock_tolerance = std::nan(""); }, "shock_tolerance");
   refused([](ContactSettings& c) { c.shock_iterations = -1; }, "iteration counts");
+  refused([](ContactSettings& c) { c.contact_tolerance = -1e-6; }, "contact_tolerance");
+  refused([](ContactSettings& c) { c.contact_tolerance = INFINITY; }, "contact_tolerance");
   refused([](ContactSettings& c) { c.static_slip_speed = INFINITY; }, "static_slip_speed");
   refused([](ContactSettings& c) { c.position_correction = 0.0; }, "position_correction");
   refused([](ContactSettings& c) { c.contact_margin = -0.01; }, "contact_margin");
   WorldSettings<3> fine;
   fine.contact.shock_tolerance = 0.0;  // always every pass: allowed
+  fine.contact.contact_tolerance = 0.0;
   CHECK_NOTHROW(World<3>(fine));
 }
 

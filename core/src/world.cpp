@@ -91,6 +91,7 @@ void check_contact_settings(const ContactSettings& c) {
     throw Error("contact iteration counts must be >= 0");
   if (!finite_nonneg(c.face_preference)) throw Error("contact.face_preference must be finite and >= 0 (m)");
   if (!finite_nonneg(c.static_slip_speed)) throw Error("contact.static_slip_speed must be finite and >= 0 (m/s)");
+  if (!finite_nonneg(c.contact_tolerance)) throw Error("contact.contact_tolerance must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.shock_tolerance)) throw Error("contact.shock_tolerance must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.linear_slop)) throw Error("contact.linear_slop must be finite and >= 0 (m)");
   if (!(c.position_correction > 0.0 && c.position_correction <= 1.0))

@@ -86,6 +86,7 @@ ContactSettings read_contact_settings(const Node& node) {
   c.collision_iterations = read_count(obj, "collision_iterations", c.collision_iterations);
   c.contact_iterations = read_count(obj, "contact_iterations", c.contact_iterations);
   c.warm_start = obj.boolean_or("warm_start", c.warm_start);
+  c.contact_tolerance = read_ranged(obj, "contact_tolerance", c.contact_tolerance, 0.0, 1e6, ">= 0 m/s");
   c.shock_iterations = read_count(obj, "shock_iterations", c.shock_iterations);
   c.shock_tolerance = read_ranged(obj, "shock_tolerance", c.shock_tolerance, 0.0, 1e6, ">= 0 m/s");
   c.linear_slop = read_ranged(obj, "linear_slop", c.linear_slop, 0.0, 1e3, "in [0, 1000] m");

@@ -46,6 +46,11 @@ struct ContactSettings {
   // impulses the same features received in the last step (warm start) unless turned off.
   int contact_iterations = 10;
   bool warm_start = true;
+  // m/s. Contact processing stops early once a pass changes no point's velocity by more than this,
+  // along the normal or (through friction) in the tangent plane: a warm-started resting stack is often
+  // converged after one or two passes. Kept as small as shock_tolerance, for the same reason. 0 always
+  // runs contact_iterations passes.
+  double contact_tolerance = 1e-6;
   // Then shock propagation: the contact graph's levels upward from static bodies, each level solved with
   // the levels below it frozen (infinite mass), at most this many passes per level; 0 turns it off.
   int shock_iterations = 20;

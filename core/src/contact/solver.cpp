@@ -31,12 +31,19 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
   }
 }
 
+// How much one visit of a point changed its velocity, m/s: along the normal (exact: the impulse change
+// over the normal effective mass) and in the tangent plane through friction (the largest component of
+// the friction impulse change over the same mass; a measure for convergence, not the exact change).
+struct PointChange {
+  double normal = 0.0, tangent = 0.0;
+};
+
 // One point, friction first and the normal last (the normal matters most): the tangential impulse that
 // stops slipping if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when the step
 // began), else mu j_n against the slip; then the normal impulse that brings the normal velocity to the
 // target, never pulling.
 template <int N>
-double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
+PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
   const Vec<N>& n = c.normal;
   Vec<N> u = relative_velocity(a, b, p);
   Vec<N> friction = Vec<N>::Zero();  // this pass's change of the tangential impulse
@@ -69,7 +76,8 @@ double solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, co
   const double change = next - p.normal_impulse;
   apply_impulse(a, b, p, Vec<N>(friction + change * n));
   p.normal_impulse = next;
-  return change == 0.0 ? 0.0 : std::abs(change) / p.normal_mass;  // m/s: the point's normal velocity change
+  if (!(p.normal_mass > 0.0)) return {};  // a point with zero effective masses receives nothing
+  return {std::abs(change) / p.normal_mass, friction.cwiseAbs().maxCoeff() / p.normal_mass};
 }
 
 template <int N>
@@ -159,7 +167,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         b.frozen = b.level < level;
         double change = 0.0;
         for (int k = c.first; k < c.first + c.count; ++k)
-          change = std::max(change, solve_point(a, b, s.points[k], c, contact_target(s.points[k], h)));
+          change = std::max(change, solve_point(a, b, s.points[k], c, contact_target(s.points[k], h)).normal);
         c.shock_tick = ++tick;
         c.shock_change = change;
         if (change > settings.shock_tolerance) {
@@ -326,12 +334,18 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   load_velocities(s, bodies);
   snapshot_velocities(s);
   if (settings.warm_start) warm_start(s);
-  for (int it = 0; it < settings.contact_iterations; ++it)
+  for (int it = 0; it < settings.contact_iterations; ++it) {
+    double largest = 0.0;  // m/s
     for (const Constraint<N>& c : s.constraints) {
       SolverBody<N>& a = s.solver_bodies[c.a];
       SolverBody<N>& b = s.solver_bodies[c.b];
-      for (int k = c.first; k < c.first + c.count; ++k) solve_point(a, b, s.points[k], c, contact_target(s.points[k], h));
+      for (int k = c.first; k < c.first + c.count; ++k) {
+        const PointChange d = solve_point(a, b, s.points[k], c, contact_target(s.points[k], h));
+        largest = std::max(largest, std::max(d.normal, d.tangent));
+      }
     }
+    if (largest <= settings.contact_tolerance) break;
+  }
   if (settings.shock_iterations > 0) shock_propagation(s, settings, h);
   keep_for_warm_start(s);
   limit_energy(s, bodies, false);
