@@ -66,14 +66,16 @@ struct SolverBody {
   std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
 };
 
-// One contact point: lever arms, K = delta/m + [r]_*^T I^-1 [r]_* (summed over the bodies), the
-// effective masses along the normal and in the tangent space, and the accumulated impulses of the
+// One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
+// bodies that can move), the effective masses along the normal and in the tangent space, and the accumulated impulses of the
 // current stage.
 template <int N>
 struct PointConstraint {
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
   Eigen::Matrix<double, kBiv<N>, N> wa, wb;         // I^-1 [r]_* for each body (angular change per impulse)
-  Mat<N> k;  // K of the bodies that can move: the pair's, or the unfrozen body's in shock propagation
+  // K n, of the bodies that can move (the pair's, or the unfrozen body's in shock propagation): how a
+  // friction impulse j_t changes the normal velocity, n . K j_t = (K n) . j_t.
+  Vec<N> kn = Vec<N>::Zero();
   // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
   // that makes it (of the pair, or of the unfrozen body during shock propagation).
   Mat<N> tangent_mass;
@@ -97,12 +99,14 @@ struct PointConstraint {
 // effective masses, so it never receives an impulse instead of turning the bodies' velocities to NaN.
 template <int N>
 inline void set_effective_masses(PointConstraint<N>& p, const Mat<N>& k, const Vec<N>& n) {
-  p.normal_mass = 1.0 / n.dot(k * n);
+  p.kn = k * n;
+  p.normal_mass = 1.0 / n.dot(p.kn);
   const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
   p.tangent_mass = (proj * k * proj + n * n.transpose()).inverse();
   if (!(std::isfinite(p.normal_mass) && p.normal_mass >= 0.0) || !p.tangent_mass.allFinite()) {
     p.normal_mass = 0.0;
     p.tangent_mass.setZero();
+    p.kn.setZero();
   }
 }
 

@@ -220,8 +220,9 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
       q.wa = sa.inv_inertia * ja;
       q.wb = sb.inv_inertia * jb;
-      q.k = (sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb;
-      set_effective_masses(q, q.k, c.normal);
+      set_effective_masses(
+          q, Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb),
+          c.normal);
       q.pseudo_mass = q.normal_mass;
       q.gap = -cp.depth;
       const Vec<N> u = relative_velocity(sa, sb, q);

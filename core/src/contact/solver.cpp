@@ -45,13 +45,14 @@ struct PointChange {
 template <int N>
 PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
   const Vec<N>& n = c.normal;
-  Vec<N> u = relative_velocity(a, b, p);
+  const Vec<N> u = relative_velocity(a, b, p);
+  double un = n.dot(u);               // normal velocity
   Vec<N> friction = Vec<N>::Zero();  // this pass's change of the tangential impulse
   // (A point whose normal impulse has dropped to zero still has its friction taken back to zero here:
   // friction without a normal force would be outside every cone.)
   if (p.friction > 0.0 && (p.normal_impulse > 0.0 || !p.tangent_impulse.isZero(0.0))) {
     const Vec<N> old = p.tangent_impulse;
-    const Vec<N> slip = u - u.dot(n) * n;
+    const Vec<N> slip = u - un * n;
     Vec<N> next = old - p.tangent_mass * slip;
     const double t2 = next.squaredNorm(), limit = p.friction * p.normal_impulse;
     if (t2 > limit * limit) {  // (no square root for the usual point that sticks)
@@ -67,11 +68,10 @@ PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& 
     }
     friction = next - old;
     p.tangent_impulse = next;
-    // The point's velocity after the friction impulse, K j_t (K of the bodies that can move), so the
-    // bodies are updated once for both impulses.
-    u += p.k * friction;
+    // The normal velocity after the friction impulse, n . K j_t (K of the bodies that can move), so
+    // the bodies are updated once for both impulses.
+    un += p.kn.dot(friction);
   }
-  const double un = n.dot(u);
   const double next = std::max(p.normal_impulse + p.normal_mass * (target - un), 0.0);
   const double change = next - p.normal_impulse;
   apply_impulse(a, b, p, Vec<N>(friction + change * n));
@@ -147,8 +147,8 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         PointConstraint<N>& p = s.points[k];
         const Vec<N>& r = fa ? p.rb : p.ra;
         const auto& w = fa ? p.wb : p.wa;  // I^-1 [r]_* of the moving body
-        p.k = moving.inv_mass * Mat<N>::Identity() + wedge_matrix<N>(r).transpose() * w;
-        set_effective_masses(p, p.k, c.normal);
+        set_effective_masses(p, Mat<N>(moving.inv_mass * Mat<N>::Identity() + wedge_matrix<N>(r).transpose() * w),
+                             c.normal);
       }
     }
     // After the first pass a constraint is visited again only while it can still change by more than
