@@ -119,7 +119,9 @@ def main():
     for name, goal in STEP_GOALS_MS.items():
         if name in medians:
             ms = medians[name]["cpu_time"]
-            print(f"{name}: {ms:.2f} ms/step (goal <= {goal} ms: {'met' if ms <= goal else 'NOT met'})")
+            settled = medians[name].get("settled_s")
+            when = "" if settled is None else f", asleep after {settled:.1f} s of warm-up"
+            print(f"{name}: {ms:.2f} ms/step (goal <= {goal} ms: {'met' if ms <= goal else 'NOT met'}{when})")
     for name in order:
         if name.startswith("PaperScene/") and name in medians:
             rate = 1000.0 / medians[name]["cpu_time"]
