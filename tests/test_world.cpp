@@ -206,7 +206,7 @@ TEST_CASE("invalid contact settings are refused with a clear error", "[world][co
   refused([](ContactSettings& c) { c.position_correction = 0.0; }, "position_correction");
   refused([](ContactSettings& c) { c.contact_margin = -0.01; }, "contact_margin");
   WorldSettings<3> fine;
-  fine.contact.shock_tolerance = 0.0;  // always every pass: allowed
+  fine.contact.shock_tolerance = 0.0;  // no early stop by tolerance: allowed
   fine.contact.contact_tolerance = 0.0;
   CHECK_NOTHROW(World<3>(fine));
 }

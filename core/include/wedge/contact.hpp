@@ -57,7 +57,8 @@ struct ContactSettings {
   // m/s. A level stops early once a pass changes no point's normal velocity by more than this. The
   // residual it leaves acts every step in the same direction, so it is kept far below what a resting
   // stack may drift: 1e-6 m/s is 0.06 mm a minute (a 4D tower of 10 tesseracts at 120 Hz stays within
-  // 0.3 mm for 60 s; 1e-4 lets it creep by millimetres). 0 always runs shock_iterations passes.
+  // 0.3 mm for 60 s; 1e-4 lets it creep by millimetres). 0 turns this off; a level still stops once
+  // its passes stall (solver.cpp, shock_propagation).
   double shock_tolerance = 1e-6;
   // m. Penetration below this is left alone; deeper penetration is pushed out by split impulses, which
   // move positions without adding kinetic energy.
