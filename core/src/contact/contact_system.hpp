@@ -67,8 +67,8 @@ struct SolverBody {
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
-// bodies that can move), the effective masses along the normal and in the tangent space, and the accumulated impulses of the
-// current stage.
+// bodies that can move), the effective masses along the normal and in the tangent space, and the
+// accumulated impulses of the current stage.
 template <int N>
 struct PointConstraint {
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
