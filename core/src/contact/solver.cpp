@@ -31,12 +31,19 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
   }
 }
 
-// How much one visit of a point changed its velocity, m/s: along the normal (exact: the impulse change
-// over the normal effective mass) and in the tangent plane through friction (the largest component of
-// the friction impulse change over the same mass; a measure for convergence, not the exact change).
+// What one visit of a point changed, N s: the normal impulse, and the largest component of the
+// friction impulse. (Only the callers that need a speed divide; see speed_of.)
 struct PointChange {
   double normal = 0.0, tangent = 0.0;
 };
+
+// An impulse change as a velocity change, m/s: exact along the normal (over the normal effective mass);
+// for friction a measure for convergence of the same scale, not the exact change. Zero for a point
+// with zero effective masses, which never receives an impulse.
+template <int N>
+double speed_of(const PointConstraint<N>& p, double impulse) {
+  return p.normal_mass > 0.0 ? impulse / p.normal_mass : 0.0;
+}
 
 // One point, friction first and the normal last (the normal matters most): the tangential impulse that
 // stops slipping if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when the step
@@ -76,8 +83,7 @@ PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& 
   const double change = next - p.normal_impulse;
   apply_impulse(a, b, p, Vec<N>(friction + change * n));
   p.normal_impulse = next;
-  if (!(p.normal_mass > 0.0)) return {};  // a point with zero effective masses receives nothing
-  return {std::abs(change) / p.normal_mass, friction.cwiseAbs().maxCoeff() / p.normal_mass};
+  return {std::abs(change), friction.cwiseAbs().maxCoeff()};
 }
 
 template <int N>
@@ -166,8 +172,10 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         a.frozen = a.level < level;
         b.frozen = b.level < level;
         double change = 0.0;
-        for (int k = c.first; k < c.first + c.count; ++k)
-          change = std::max(change, solve_point(a, b, s.points[k], c, contact_target(s.points[k], h)).normal);
+        for (int k = c.first; k < c.first + c.count; ++k) {
+          PointConstraint<N>& q = s.points[k];
+          change = std::max(change, speed_of(q, solve_point(a, b, q, c, contact_target(q, h)).normal));
+        }
         c.shock_tick = ++tick;
         c.shock_change = change;
         if (change > settings.shock_tolerance) {
@@ -340,8 +348,9 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
       SolverBody<N>& a = s.solver_bodies[c.a];
       SolverBody<N>& b = s.solver_bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
-        const PointChange d = solve_point(a, b, s.points[k], c, contact_target(s.points[k], h));
-        largest = std::max(largest, std::max(d.normal, d.tangent));
+        PointConstraint<N>& q = s.points[k];
+        const PointChange d = solve_point(a, b, q, c, contact_target(q, h));
+        largest = std::max(largest, speed_of(q, std::max(d.normal, d.tangent)));
       }
     }
     if (largest <= settings.contact_tolerance) break;
