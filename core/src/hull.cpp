@@ -1,7 +1,6 @@
 #include "wedge/hull.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "linalg/decompositions.hpp"
 #include "wedge/error.hpp"
 
 // Qhull's C headers last: they define many macros.
@@ -150,10 +150,9 @@ ConvexHull<N> convex_hull(const std::vector<Vec<N>>& points) {
   Vec<N> mean = Vec<N>::Zero();
   for (const Vec<N>& p : points) mean += p;
   mean /= double(n);
-  Eigen::Matrix<double, N, Eigen::Dynamic> a(N, n);
+  Eigen::MatrixXd a(N, n);
   for (int i = 0; i < n; ++i) a.col(i) = points[std::size_t(i)] - mean;
-  const Eigen::JacobiSVD<Eigen::Matrix<double, N, Eigen::Dynamic>> svd(a);
-  const auto& sv = svd.singularValues();
+  const Eigen::VectorXd sv = linalg::singular_values(a);
   if (!(sv[0] > 0.0)) throw Error("convex hull: all " + std::to_string(n) + " points coincide");
   int rank = 0;
   for (int i = 0; i < N; ++i) rank += sv[i] > 1e-10 * sv[0] ? 1 : 0;

@@ -1,6 +1,5 @@
 #include "wedge/mass.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <array>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "linalg/decompositions.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
 
@@ -241,9 +241,10 @@ PrincipalFrame<N> principal_frame(const MassProperties<N>& props) {
   if (off <= 1e-12 * c.trace()) {
     out.axes = Mat<N>::Identity();
   } else {
-    const Eigen::SelfAdjointEigenSolver<Mat<N>> es(c);
-    if (es.info() != Eigen::Success) throw Error("principal frame: eigen-decomposition failed");
-    Mat<N> q = es.eigenvectors();
+    Eigen::VectorXd values;
+    Eigen::MatrixXd vectors;
+    if (!linalg::symmetric_eigen(c, values, vectors)) throw Error("principal frame: eigen-decomposition failed");
+    Mat<N> q = vectors;
     for (int j = 0; j < N; ++j) {
       int big = 0;
       for (int i = 1; i < N; ++i)

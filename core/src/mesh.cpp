@@ -1,7 +1,6 @@
 #include "wedge/mesh.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -96,17 +95,19 @@ void validate(const SimplexMesh<N>& mesh) {
           throw Error("mesh cell " + std::to_string(ci) + " repeats vertex " + std::to_string(c[j]) +
                       " (a cell needs " + std::to_string(N) + " distinct vertices)");
     }
-    // (N-1)-volume * (N-1)! = |prod diag R| of the edge matrix, against the longest edge^(N-1).
-    Eigen::Matrix<double, N, N - 1> e;
-    double longest = 0.0;
+    // (N-1)-volume * (N-1)! = the product of the edge vectors' lengths after Gram-Schmidt (|prod diag R|
+    // of a QR of the edge matrix), against the longest edge^(N-1).
+    std::array<Vec<N>, N - 1> e;
+    double longest = 0.0, vol = 1.0;
     for (int j = 1; j < N; ++j) {
-      e.col(j - 1) = mesh.vertices[std::size_t(c[j])] - mesh.vertices[std::size_t(c[0])];
+      Vec<N> x = mesh.vertices[std::size_t(c[j])] - mesh.vertices[std::size_t(c[0])];
+      for (int k = 0; k < j - 1; ++k) x -= e[std::size_t(k)].dot(x) * e[std::size_t(k)];
+      const double len = x.norm();
+      vol *= len;
+      e[std::size_t(j - 1)] = len > 0.0 ? Vec<N>(x / len) : Vec<N>::Zero();
       for (int k = 0; k < j; ++k)
         longest = std::max(longest, (mesh.vertices[std::size_t(c[j])] - mesh.vertices[std::size_t(c[k])]).norm());
     }
-    const Eigen::HouseholderQR<Eigen::Matrix<double, N, N - 1>> qr(e);
-    double vol = 1.0;
-    for (int j = 0; j < N - 1; ++j) vol *= std::abs(qr.matrixQR()(j, j));
     if (!(vol > 1e-12 * std::pow(longest, N - 1)))
       throw Error("mesh cell " + std::to_string(ci) + " " + join(c) +
                   " is degenerate (zero " + std::to_string(N - 1) + "-volume: its vertices " +

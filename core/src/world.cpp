@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "contact/contact_system.hpp"
+#include "linalg/decompositions.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
@@ -51,8 +52,8 @@ Body<N> make_body(const BodyDef<N>& def) {
   }
   if (!finite(def.inertia) || (def.inertia - def.inertia.transpose()).norm() > 1e-9 * def.inertia.norm())
     throw Error(who + ": inertia must be a finite symmetric matrix");
-  Eigen::SelfAdjointEigenSolver<BivMat<N>> eig(def.inertia, Eigen::EigenvaluesOnly);
-  if (!(eig.eigenvalues()[0] > 1e-12 * eig.eigenvalues()[kBiv<N> - 1]))
+  const Eigen::VectorXd eig = linalg::symmetric_eigenvalues(def.inertia);
+  if (!(eig[0] > 1e-12 * eig[kBiv<N> - 1]))
     throw Error(who + ": inertia must be positive definite");
   b.mass = def.mass;
   b.inv_mass = 1.0 / def.mass;

@@ -36,11 +36,16 @@ struct BoxSat {
   Vec<N> d;         // b's centre minus a's, in a's frame
   SatAxis<N> best;  // the normal is kept in a's frame until the end
   double tie = 0.0, margin = 0.0, prefer = 0.0;
+  SatAxis<N> sep;  // the axis that separates the boxes beyond the margin, if one does
 
   // `slack`: how much shallower than the best so far the axis must be (face preference, mixed axes).
+  // A gap within the round-off band (tie) is touching, not apart.
   bool consider(double pen, const Vec<N>& axis_a, double along, int facet_a, int facet_b, double slack = 0.0) {
-    if (pen < best.pen - tie - slack) best = {pen, along < 0.0 ? Vec<N>(-axis_a) : axis_a, facet_a, facet_b};
-    return pen >= -margin;
+    const Vec<N> axis = along < 0.0 ? Vec<N>(-axis_a) : axis_a;
+    if (pen < best.pen - tie - slack) best = {pen, axis, facet_a, facet_b};
+    if (pen >= -margin - tie) return true;
+    sep = {pen, axis, facet_a, facet_b};
+    return false;
   }
 
   // The mixed axes with |S| = K axes of a. M = N - K coordinates remain.
@@ -94,8 +99,16 @@ Manifold<N> box_box(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
   const Vec<N>& ha = a.template as<shapes::Box<N>>().half_extents;
   const Vec<N>& hb = b.template as<shapes::Box<N>>().half_extents;
   const Mat<N> c = ta.rotation.transpose() * tb.rotation;
-  BoxSat<N> sat{ha, hb, c, c.cwiseAbs(), ta.rotation.transpose() * (tb.position - ta.position), SatAxis<N>{},
-                1e-9 * std::max(ha.norm(), hb.norm()), settings.contact_margin, settings.face_preference};
+  BoxSat<N> sat{ha,
+                hb,
+                c,
+                c.cwiseAbs(),
+                ta.rotation.transpose() * (tb.position - ta.position),
+                SatAxis<N>{},
+                round_off_band(std::max(ha.norm(), hb.norm())),
+                settings.contact_margin,
+                settings.face_preference,
+                SatAxis<N>{}};
   Manifold<N> m;
   bool apart = false;
   for (int i = 0; i < N && !apart; ++i)  // a's faces: facet 2i + 1 is +e_i, 2i is -e_i
@@ -107,9 +120,10 @@ Manifold<N> box_box(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
                           2 * j + (along < 0.0));
   }
   if (!apart) apart = !sat.template all_mixed<1>();
-  if (apart) {
+  if (apart) {  // minus the gap along the separating axis: a lower bound the dispatcher may refine
     m.intersecting = false;
-    m.depth = -std::numeric_limits<double>::infinity();  // the dispatcher fills in the distance
+    m.depth = sat.sep.pen;
+    m.normal = ta.rotation * sat.sep.normal;
     return m;
   }
   SatAxis<N> best = sat.best;
@@ -117,7 +131,7 @@ Manifold<N> box_box(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
   m.intersecting = best.pen >= 0.0;
   m.depth = best.pen;
   m.normal = best.normal;
-  sat_manifold(*a.features(), ta, *b.features(), tb, best, settings.contact_margin, m);
+  sat_manifold(*a.features(), ta, *b.features(), tb, best, settings.contact_margin + sat.tie, m);
   return m;
 }
 

@@ -1,9 +1,10 @@
 #include "wedge/collision/convex_features.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <iterator>
 #include <set>
+
+#include "linalg/decompositions.hpp"
 
 namespace wedge {
 namespace {
@@ -12,12 +13,10 @@ namespace {
 template <int N>
 std::vector<Vec<N>> span_basis(const std::vector<Vec<N>>& pts, const std::vector<int>& idx, double tol) {
   if (idx.size() < 2) return {};
-  Eigen::Matrix<double, N, Eigen::Dynamic> d(N, Eigen::Index(idx.size() - 1));
+  Eigen::MatrixXd d(N, Eigen::Index(idx.size() - 1));
   for (std::size_t i = 1; i < idx.size(); ++i) d.col(Eigen::Index(i - 1)) = pts[idx[i]] - pts[idx[0]];
-  Eigen::JacobiSVD<Eigen::Matrix<double, N, Eigen::Dynamic>> svd(d, Eigen::ComputeFullU);
   std::vector<Vec<N>> basis;
-  for (int i = 0; i < int(svd.singularValues().size()); ++i)
-    if (svd.singularValues()[i] > tol) basis.push_back(svd.matrixU().col(i));
+  for (const Eigen::VectorXd& u : linalg::column_space_basis(d, tol)) basis.push_back(u);
   return basis;
 }
 

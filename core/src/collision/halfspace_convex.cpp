@@ -17,7 +17,8 @@ Manifold<N> halfspace_convex(const Shape<N>& a, const Transform<N>& ta, const Sh
   m.normal = n;
   m.depth = offset - n.dot(deepest);
   m.intersecting = m.depth >= 0.0;
-  const double margin = settings.contact_margin;
+  // The margin widened by the round-off band: a cell lying exactly on the plane keeps all its corners.
+  const double margin = settings.contact_margin + round_off_band(shape_scale(b));
   if (m.depth < -margin) return m;
   thread_local std::vector<SupportPoint<N>> set;
   thread_local std::vector<ContactPoint<N>> points;

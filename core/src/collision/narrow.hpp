@@ -74,6 +74,10 @@ constexpr int bit_count(std::uint64_t v) {
   v = (v + (v >> 4)) & 0x0f0f0f0f0f0f0f0fULL;
   return int((v * 0x0101010101010101ULL) >> 56);
 }
+// The round-off band of a pair whose length scale is `scale` (m): features that touch exactly compute as
+// overlapping or apart by ~1e-16 m at random, so a gap below this counts as touching, not apart, and
+// contact points within it of the margin are kept (a face resting on a face keeps its whole manifold).
+inline double round_off_band(double scale) { return 1e-9 * scale; }
 // Mixes feature ids into one 64-bit id.
 inline std::uint64_t mix_id(std::uint64_t h, std::uint64_t v) {
   h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);

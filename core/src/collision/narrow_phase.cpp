@@ -1,6 +1,7 @@
 // The dispatch table: one entry per pair of shape kinds. Each entry names the family function and
 // whether the pair is passed swapped (the function wants its shapes in the other order; the manifold's
 // normal is then reversed).
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -52,8 +53,10 @@ Manifold<N> collide(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
     return none;
   }
   Manifold<N> m = e.swap ? collision::flipped(e.fn(b, tb, a, ta, settings)) : e.fn(a, ta, b, tb, settings);
-  if (settings.exact_separation && !m.intersecting && a.features() && b.features()) {
-    // The separating axis test only bounds the distance from below; GJK gives it exactly.
+  if (settings.exact_separation && !m.intersecting && a.features() && b.features() &&
+      m.depth < -collision::round_off_band(std::max(a.features()->radius, b.features()->radius))) {
+    // The separating axis test only bounds the distance from below; GJK gives it exactly. Not for pairs
+    // that touch to round-off: there GJK's direction is arbitrary, the separating axis's is the face's.
     const auto sa = [&](const Vec<N>& d) { return collision::world_support(a, ta, d); };
     const auto sb = [&](const Vec<N>& d) { return collision::world_support(b, tb, d); };
     const GjkResult<N> g = gjk<N>(sa, sb, Vec<N>(tb.position - ta.position));

@@ -3,11 +3,11 @@
 // for k = 1..N-2, the normals of the span of a k-face direction space of a with an (N-1-k)-face direction
 // space of b. These are exactly the facet normals of the Minkowski difference, so the smallest overlap
 // over them is the exact minimum translation distance.
-#include <Eigen/QR>
 #include <cmath>
 #include <limits>
 
 #include "collision/narrow.hpp"
+#include "linalg/decompositions.hpp"
 
 namespace wedge::collision {
 namespace {
@@ -95,9 +95,7 @@ void sat_manifold(const ConvexFeatures<N>& fa, const Transform<N>& ta, const Con
       // pa + sum x_i (a's directions) = pb + sum y_j (b's directions) + delta u. Nearly parallel
       // features make the system nearly singular: a rank-revealing solve drops the dependent
       // directions (their coefficients are 0) instead of sending the point metres away.
-      auto qr = sys.colPivHouseholderQr();
-      qr.setThreshold(1e-6);
-      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, N, 1> x = qr.solve(Vec<N>(vb[sb[0]] - va[sa[0]]));
+      const Eigen::VectorXd x = linalg::solve_rank_revealing(sys, Vec<N>(vb[sb[0]] - va[sa[0]]), 1e-6);
       Vec<N> pa = va[sa[0]];
       for (Eigen::Index i = 0; i < from_a; ++i) pa += x[i] * sys.col(i);
       // pa should lie on a, and pa - pen u on b. Where the closest approach of the features' spans
@@ -146,15 +144,18 @@ Manifold<N> polytope_polytope(const Shape<N>& a, const Transform<N>& ta, const S
   const double scale = std::max(fa.radius, fb.radius);
   // Ties within this go to the earlier candidate: a's faces, then b's, then mixed axes, so that a
   // resting contact keeps its face-to-face manifold (relative 1e-9 of the size: round-off level).
-  const double tie = 1e-9 * scale;
+  // A gap within the same band is touching, not apart.
+  const double tie = round_off_band(scale);
   const double margin = settings.contact_margin;
 
-  SatAxis<N> best;
+  SatAxis<N> best, sep;
   Manifold<N> m;
   // `slack`: how much shallower than the best so far the axis must be (face preference, mixed axes).
   auto consider = [&](const SatAxis<N>& c, double slack = 0.0) {
     if (c.pen < best.pen - tie - slack) best = c;
-    return c.pen >= -margin;  // false: separated beyond the margin, stop early
+    if (c.pen >= -margin - tie) return true;
+    sep = c;  // separated beyond the margin: stop early
+    return false;
   };
 
   double lo, hi, lo2, hi2;
@@ -187,12 +188,13 @@ Manifold<N> polytope_polytope(const Shape<N>& a, const Transform<N>& ta, const S
   m.intersecting = best.pen >= 0.0;
   m.depth = best.pen;
   m.normal = best.normal;
-  sat_manifold(fa, ta, fb, tb, best, margin, m);
+  sat_manifold(fa, ta, fb, tb, best, margin + tie, m);
   return m;
 
-separated:
+separated:  // minus the gap along the separating axis: a lower bound the dispatcher may refine
   m.intersecting = false;
-  m.depth = -std::numeric_limits<double>::infinity();  // the caller fills in the distance
+  m.depth = sep.pen;
+  m.normal = sep.normal;
   return m;
 }
 

@@ -8,7 +8,6 @@
 #pragma once
 
 #include <cmath>
-#include <Eigen/Eigenvalues>
 
 #include "wedge/ga/products.hpp"
 
@@ -56,44 +55,30 @@ inline Bivector<4> dual4(const Bivector<4>& b) {
 
 }  // namespace ga::detail
 
+// Defined in src/ga/exp_log.cpp for N = 2..6: the general paths need an eigensolver, which is costly to
+// compile, so it is compiled once rather than in every file that takes an exp or a log.
 // Peels the planes of a skew generator matrix W (W x = x . B) one at a time, largest first: the top
 // eigenvector u of W^T W, its partner v = W u / |W u|, then deflation W <- P W P with P the projector off
 // span{u, v}. Re-solving after each peel keeps every plane accurate to round-off of |B| even when the
 // angles differ by many orders of magnitude; an isoclinic (degenerate) eigenspace yields any valid split.
 template <int N>
-BivectorDecomposition<N> decompose_generator(Mat<N> w) {
-  BivectorDecomposition<N> out;
-  const double scale = w.norm();
-  for (int p = 0; p < N / 2; ++p) {
-    Eigen::SelfAdjointEigenSolver<Mat<N>> eig(w.transpose() * w);
-    const Vec<N> u = eig.eigenvectors().col(N - 1);
-    const Vec<N> wu = w * u;
-    const double angle = wu.norm();
-    if (!(angle > 4e-16 * scale)) break;  // the rest is round-off
-    const Vec<N> v = wu / angle;
-    out.planes[out.count++] = BivectorPlane<N>{angle, u, v};
-    const Mat<N> proj = Mat<N>::Identity() - u * u.transpose() - v * v.transpose();
-    w = proj * w * proj;
-  }
-  return out;
-}
+BivectorDecomposition<N> decompose_generator(Mat<N> w);
+
+// exp of a general bivector by the invariant decomposition (any N; the path used for N >= 5).
+template <int N>
+Rotor<N> exp_by_decomposition(const Bivector<N>& b);
+
+// log of a rotor from the rotation planes of its matrix M (any N; the path used for N >= 5), such that
+// exp(log R) = R including the sign of R (a full turn is R = -1). Planes turned by more than 60 degrees
+// are peeled from the eigenvectors of I - (M + M^T)/2 (eigenvalue 1 - cos a); the rest from the skew part
+// (M - M^T)/2 (eigenvalue sin a), where small angles keep their full precision.
+template <int N>
+Bivector<N> log_by_decomposition(const Rotor<N>& r);
 
 // The invariant decomposition of any bivector into at most N/2 commuting orthogonal simple parts.
 template <int N>
 BivectorDecomposition<N> decompose(const Bivector<N>& b) {
   return decompose_generator<N>(generator_matrix(b));
-}
-
-// exp of a general bivector by the invariant decomposition (any N; the path used for N >= 5).
-template <int N>
-Rotor<N> exp_by_decomposition(const Bivector<N>& b) {
-  const BivectorDecomposition<N> d = decompose(b);
-  Rotor<N> r = Rotor<N>::identity();
-  for (int i = 0; i < d.count; ++i) {
-    const BivectorPlane<N>& p = d.planes[i];
-    r = r * Rotor<N>::from_parts(std::cos(p.angle), outer<N>(p.u, p.v) * std::sin(p.angle));
-  }
-  return r;
 }
 
 template <int N>
@@ -115,51 +100,6 @@ Rotor<N> exp(const Bivector<N>& b) {
   } else {
     return exp_by_decomposition(b);
   }
-}
-
-// log of a rotor from the rotation planes of its matrix M (any N; the path used for N >= 5), such that
-// exp(log R) = R including the sign of R (a full turn is R = -1). Planes turned by more than 60 degrees
-// are peeled from the eigenvectors of I - (M + M^T)/2 (eigenvalue 1 - cos a); the rest from the skew part
-// (M - M^T)/2 (eigenvalue sin a), where small angles keep their full precision.
-template <int N>
-Bivector<N> log_by_decomposition(const Rotor<N>& r) {
-  Mat<N> m = to_matrix(r);
-  Bivector<N> out;
-  std::array<std::pair<double, Bivector<N>>, N> planes{};  // N/2 used; N keeps -Warray-bounds quiet
-  int count = 0;
-  auto add_plane = [&](const Vec<N>& u, const Vec<N>& v) {
-    const Vec<N> mu = m * u;
-    const double alpha = std::atan2(v.dot(mu), u.dot(mu));  // M u = cos(a) u + sin(a) v
-    planes[count++] = {alpha, outer<N>(u, v)};
-    out += outer<N>(u, v) * (-0.5 * alpha);
-    const Mat<N> proj = Mat<N>::Identity() - u * u.transpose() - v * v.transpose();
-    m = proj * m * proj + (Mat<N>::Identity() - proj);  // the peeled plane is now fixed
-  };
-  while (count < N / 2) {  // large turns
-    const Mat<N> sym = 0.5 * (m + m.transpose());
-    Eigen::SelfAdjointEigenSolver<Mat<N>> eig(Mat<N>::Identity() - sym);
-    if (eig.eigenvalues()[N - 1] < 0.5) break;
-    const Vec<N> u = eig.eigenvectors().col(N - 1);
-    Vec<N> v = m * u - u.dot(m * u) * u;
-    if (v.norm() < 1e-4) {  // near a half turn: the partner is the next eigenvector of the plane
-      v = eig.eigenvectors().col(N - 2);
-      v -= u.dot(v) * u;
-    }
-    add_plane(u, v.normalized());
-  }
-  if (count < N / 2) {  // small turns
-    const BivectorDecomposition<N> d = decompose_generator<N>(0.5 * (m - m.transpose()));
-    for (int i = 0; i < d.count && count < N / 2; ++i) add_plane(d.planes[i].u, d.planes[i].v);
-  }
-  // exp(out) is +R or -R; fix the sign with a full turn (+-pi) in the most turned plane.
-  if (exp_by_decomposition(out).c.dot(r.c) < 0.0) {
-    if (count == 0) return Bivector<N>::basis(0, 1) * M_PI;  // R = -1
-    int k = 0;
-    for (int i = 1; i < count; ++i)
-      if (std::abs(planes[i].first) > std::abs(planes[k].first)) k = i;
-    out += planes[k].second * (planes[k].first > 0 ? M_PI : -M_PI);
-  }
-  return out;
 }
 
 template <int N>

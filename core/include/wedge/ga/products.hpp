@@ -13,24 +13,29 @@
 namespace wedge {
 namespace ga::detail {
 
-template <const auto& T, std::size_t I, class A, class B, class O>
-inline void apply_term(const A& a, const B& b, O& o) {
-  constexpr Term t = T[I];
-  if constexpr (t.sign > 0)
-    o[t.out] += a[t.a] * b[t.b];
+// The coefficients of a value as a plain array: Eigen vectors, or the typed values' `c`.
+template <class X>
+inline auto coeff_data(X& x) {
+  if constexpr (requires { x.c.data(); })
+    return x.c.data();
   else
-    o[t.out] -= a[t.a] * b[t.b];
+    return x.data();
 }
 
-template <const auto& T, class A, class B, class O, std::size_t... I>
-inline void apply_terms(const A& a, const B& b, O& o, std::index_sequence<I...>) {
-  (apply_term<T, I>(a, b, o), ...);
+// One expression per term on raw arrays: no template is instantiated and no overload resolved per term
+// (the per-term function templates this replaced made GA-heavy files take minutes to compile).
+template <const auto& T, std::size_t... I>
+inline void apply_terms(const double* __restrict a, const double* __restrict b, double* __restrict o,
+                        std::index_sequence<I...>) {
+  constexpr const Term* t = T.data();  // built-in subscripts: std::array's operator[] is an overload set
+  ((t[I].sign > 0 ? o[t[I].out] += a[t[I].a] * b[t[I].b] : o[t[I].out] -= a[t[I].a] * b[t[I].b]), ...);
 }
 
 // o = sum over the terms of table T (o must start at zero).
 template <class Tm, class A, class B, class O>
 inline void product(const A& a, const B& b, O& o) {
-  apply_terms<Tm::table>(a, b, o, std::make_index_sequence<Tm::table.size()>{});
+  ga::detail::apply_terms<Tm::table>(coeff_data(a), coeff_data(b), coeff_data(o),
+                                     std::make_index_sequence<Tm::table.size()>{});
 }
 
 // The same sum as a plain loop: for the general multivector products, which are not hot and whose
@@ -38,22 +43,6 @@ inline void product(const A& a, const B& b, O& o) {
 template <class Tm, class A, class B, class O>
 inline void product_loop(const A& a, const B& b, O& o) {
   for (const Term& t : Tm::table) o[t.out] += t.sign * (a[t.a] * b[t.b]);
-}
-
-// Only the terms whose second factor is blade position J: the product with a basis element.
-template <const auto& T, int J, class A, class O, std::size_t... I>
-inline void apply_terms_with_basis(const A& a, O& o, std::index_sequence<I...>) {
-  (
-      [&] {
-        constexpr Term t = T[I];
-        if constexpr (t.b == J) {
-          if constexpr (t.sign > 0)
-            o[t.out] += a[t.a];
-          else
-            o[t.out] -= a[t.a];
-        }
-      }(),
-      ...);
 }
 
 template <int N, Set S>
@@ -243,13 +232,11 @@ Mat<N> to_matrix(const Rotor<N>& r) {
   using T = ga::SandwichMatrixTerms<N>;
   Mat<N> m = Mat<N>::Zero();
   if constexpr (N <= 4) {
+    const double* rc = r.c.data();
+    double* mc = m.data();  // column-major
     [&]<std::size_t... I>(std::index_sequence<I...>) {
-      (
-          [&] {
-            constexpr ga::QuadTerm t = T::table[I];
-            m(t.i, t.j) += double(t.coef) * (r[t.a] * r[t.b]);
-          }(),
-          ...);
+      constexpr const ga::QuadTerm* t = T::table.data();
+      ((mc[t[I].j * N + t[I].i] += double(t[I].coef) * (rc[t[I].a] * rc[t[I].b])), ...);
     }(std::make_index_sequence<T::table.size()>{});
   } else {
     for (const ga::QuadTerm& t : T::table) m(t.i, t.j) += double(t.coef) * (r[t.a] * r[t.b]);
