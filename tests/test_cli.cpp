@@ -339,8 +339,18 @@ TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli
       {"dt zero", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 0", "--dt"},
       {"dt negative", R"({"dim": 2, "bodies": []})", "--steps 1 --dt=-0.01", "--dt"},
       {"every zero", R"({"dim": 2, "bodies": []})", "--steps 1 --every 0", "--every"},
-      {"simulation blows up", R"({"dim": 3, "gravity": [0, -9.81, 0], "bodies": [{"shape": {"type": "sphere", "radius": 1}}]})",
-       "--steps 5 --dt 1e300", "non-finite"},
+      {"dt too large", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 1e10", "--dt must be a step size in [1e-6, 0.1] s"},
+      {"dt too small", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 1e-9", "--dt"},
+      {"timestep too large", R"({"dim": 2, "timestep": 1, "bodies": []})", "--steps 1", "timestep: must be in"},
+      {"duplicate top-level key", R"({"dim": 4, "dim": 5, "bodies": []})", "--steps 1", "duplicate key 'dim'"},
+      {"duplicate nested key", R"({"dim": 3, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}},
+         {"name": "b", "shape": {"type": "sphere", "type": "box", "radius": 1}}]})", "--steps 1",
+       "bodies[1].shape: duplicate key 'type'"},
+      {"total energy overflows", R"({"dim": 3, "bodies": [{"name": "rocket", "shape": {"type": "sphere", "radius": 1},
+         "velocity": [1e200, 0, 0]}]})", "--steps 1", "energy overflowed to a non-finite value at step 0 (the fastest body is 'rocket' at 1e+200 m/s)"},
+      {"state overflows", R"({"dim": 3, "gravity": [1e308, 0, 0], "bodies": [{"name": "stone",
+         "shape": {"type": "sphere", "radius": 1}}]})", "--steps 100 --every 1000 --dt 0.1",
+       "non-finite position of body 'stone' at step 18"},
   };
   for (const Case& c : cases) {
     INFO(c.what);
@@ -382,6 +392,64 @@ TEST_CASE("wedge inertia: bad input exits with 2 and names the file", "[cli]") {
   const Result missing = dir.run("inertia missing.json");
   CHECK(missing.code == 2);
   CHECK(missing.err.find("missing.json") != std::string::npos);
+}
+
+TEST_CASE("wedge: unknown verbs are named, help and --version answer", "[cli]") {
+  TempDir dir;
+  const Result unknown = dir.run("frobnicate");
+  CHECK(unknown.code == 2);
+  CHECK(unknown.out.empty());
+  CHECK(unknown.err.find("unknown verb 'frobnicate'") != std::string::npos);
+  const Result help = dir.run("help");
+  CHECK(help.code == 0);
+  CHECK(help.out.find("simulate") != std::string::npos);
+  CHECK(help.out.find("render") != std::string::npos);
+  const Result verb_help = dir.run("help simulate");
+  CHECK(verb_help.code == 0);
+  CHECK(verb_help.out.find("--steps") != std::string::npos);
+  const Result version = dir.run("--version");
+  CHECK(version.code == 0);
+  CHECK(version.out.find("wedge 0.") == 0);
+}
+
+TEST_CASE("wedge: a directory given as a scene is named as one", "[cli]") {
+  TempDir dir;
+  fs::create_directory(dir.path() / "scenes.json");
+  const Result r = dir.run("simulate scenes.json --steps 1");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("scenes.json: is a folder, not a JSON file") != std::string::npos);
+}
+
+TEST_CASE("wedge simulate --out prints where the states went and the state hash", "[cli]") {
+  TempDir dir;
+  dir.write("projectile.json", kProjectile3);
+  const Result r = dir.run("simulate projectile.json --steps 10 --every 5 --out states.jsonl --hash");
+  REQUIRE(r.code == 0);
+  const std::string file = read_file(dir.path() / "states.jsonl");
+  const json last = json::parse(file.substr(file.rfind('\n', file.size() - 2) + 1));
+  const std::string hash = last.at("state_hash");
+  CHECK(r.out == "wrote 3 states (steps 0..10) to states.jsonl; state hash " + hash + "\n");
+  // Without --out the states themselves are stdout: nothing else is printed there.
+  const Result plain = dir.run("simulate projectile.json --steps 10 --every 5 --hash");
+  CHECK(plain.out == file);
+}
+
+TEST_CASE("wedge simulate and render: Ctrl-C removes partial output and exits 130", "[cli]") {
+  TempDir dir;
+  // A long run: 200 balls falling onto a ground, 10^7 steps (hours), interrupted after half a second.
+  std::string bodies = R"({"name": "ground", "static": true, "shape": {"type": "halfspace", "normal": [0, 1, 0], "offset": 0}})";
+  for (int i = 0; i < 200; ++i)
+    bodies += R"(, {"shape": {"type": "sphere", "radius": 0.2}, "position": [)" + std::to_string(i % 10) + ", " +
+              std::to_string(1 + i / 10) + ", 0]}";
+  dir.write("long.json", std::string(R"({"dim": 3, "gravity": [0, -9.81, 0], "bodies": [)") + bodies + "]}");
+  for (const char* verb : {"simulate long.json --steps 10000000 --out out.jsonl",
+                           "render long.json --steps 10000000 --every 1000 --out frames --size 64x64"}) {
+    INFO(verb);
+    const Result r = dir.shell(std::string("\"$WEDGE\" ") + verb + " & pid=$!; sleep 0.5; kill -INT $pid; wait $pid");
+    CHECK(r.code == 130);
+    CHECK(r.err.find("interrupted (SIGINT); partial output removed") != std::string::npos);
+    CHECK(dir.listing() == std::vector<std::string>{"long.json"});  // no out.jsonl, no temporary, no frames
+  }
 }
 
 TEST_CASE("wedge: usage errors exit with 2", "[cli]") {

@@ -93,7 +93,8 @@ int collide_scene(const Json& doc, const CollideOptions& options, double margin)
   }
   OutJson result;
   result["pairs"] = std::move(list);
-  if (!all_finite(result)) throw Failure(file + ": collision detection produced a non-finite value");
+  if (const std::string bad = first_non_finite(result); !bad.empty())  // never bad input: finite shapes give finite results
+    throw InternalError(file + ": collision detection produced a non-finite value at " + bad);
   OutputSink out(options.out);
   out.write_line(result.dump());
   out.commit();

@@ -10,15 +10,18 @@
 
 namespace wedge::cli {
 
-bool all_finite(const OutJson& j) {
+std::string first_non_finite(const OutJson& j, const std::string& path) {
   switch (j.type()) {
-    case OutJson::value_t::number_float: return std::isfinite(j.get<double>());
+    case OutJson::value_t::number_float: return std::isfinite(j.get<double>()) ? "" : (path.empty() ? "value" : path);
     case OutJson::value_t::array:
+      for (std::size_t i = 0; i < j.size(); ++i)
+        if (std::string p = first_non_finite(j[i], path + "[" + std::to_string(i) + "]"); !p.empty()) return p;
+      return "";
     case OutJson::value_t::object:
-      for (const auto& e : j)
-        if (!all_finite(e)) return false;
-      return true;
-    default: return true;
+      for (const auto& [key, value] : j.items())
+        if (std::string p = first_non_finite(value, path.empty() ? key : path + "." + key); !p.empty()) return p;
+      return "";
+    default: return "";
   }
 }
 

@@ -46,8 +46,10 @@ OutJson to_json(const Rotor<N>& r) {
   return to_json_array(r.c);
 }
 
-// True if every number in the document is finite (nlohmann would print NaN and inf as null).
-bool all_finite(const OutJson& j);
+// The path of the first number in the document that is not finite ("energy", "bodies[1].velocity[0]"),
+// or "" if all are (nlohmann would print NaN and inf as null).
+std::string first_non_finite(const OutJson& j, const std::string& path = "");
+inline bool all_finite(const OutJson& j) { return first_non_finite(j).empty(); }
 
 // Output that appears whole or not at all. For a file, lines go to a temporary file next to it that is
 // renamed into place by commit(); for stdout, to an anonymous temporary file copied to stdout by

@@ -1,11 +1,14 @@
 // wedge: the command-line front end of the engine. Dispatches to one verb per file (inertia.cpp,
 // simulate.cpp, collide.cpp, render.cpp, slice.cpp); exit codes in cli_error.hpp.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "cli_error.hpp"
+#include "interrupt.hpp"
 #include "verbs.hpp"
 #include "wedge/error.hpp"
 
@@ -15,7 +18,9 @@ int main(int argc, char** argv) {
                "Input and output formats: docs/scene-format.md.",
                "wedge"};
   app.require_subcommand(1);
-  app.footer(std::string("Run 'wedge VERB --help' for the options of a verb.\n") + kExitCodesText);
+  app.set_version_flag("--version", std::string("wedge ") + WEDGE_VERSION);
+  app.footer(std::string("Run 'wedge VERB --help' (or 'wedge help VERB') for the options of a verb.\n") +
+             kExitCodesText);
 
   InertiaOptions inertia;
   SimulateOptions simulate;
@@ -28,17 +33,39 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd = add_render_verb(app, render);
   CLI::App* slice_cmd = add_slice_verb(app, slice);
 
+  // The verb comes first. Name an unknown one (CLI11 would only say that a subcommand is required), and
+  // take `wedge help [VERB]` as the --help it means.
+  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice"};
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && args[0] == "help") {
+    if (args.size() == 1) {
+      std::cout << app.help();
+      return kExitOk;
+    }
+    args = {args[1], "--help"};
+  }
+  if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
+      std::find(verbs.begin(), verbs.end(), args[0]) == verbs.end()) {
+    std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render and "
+              << "slice)\nRun 'wedge --help' for usage.\n";
+    return kExitBadInput;
+  }
+
   try {
-    app.parse(argc, argv);
+    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments as a stack, last first
+    app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);  // prints the help of the (sub)command asked for, exit code 0
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << "wedge: " << e.what() << "\nRun 'wedge --help' for usage.\n";
     return kExitBadInput;
   }
 
+  install_interrupt_handlers();
   try {
     if (inertia_cmd->parsed()) return run_inertia(inertia);
     if (simulate_cmd->parsed()) return run_simulate(simulate);
@@ -47,14 +74,18 @@ int main(int argc, char** argv) {
     if (slice_cmd->parsed()) return run_slice(slice);
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
+  } catch (const Interrupted& e) {
+    std::cerr << "wedge: " << e.what() << "\n";
+    return 128 + e.signal();
   } catch (const Failure& e) {
     std::cerr << "wedge: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const wedge::Error& e) {  // should have been caught with a file name; still bad input
     std::cerr << "wedge: " << e.what() << "\n";
     return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "wedge: internal error: " << e.what() << "\n";
+  } catch (const std::exception& e) {  // InternalError, std::bad_alloc, ...
+    std::cerr << "wedge: internal error: " << e.what()
+              << "\nThis is a bug in wedge: please report it with the command line and the input files.\n";
     return kExitInternal;
   }
 }

@@ -8,6 +8,7 @@
 #include <cinttypes>
 #include <cstdio>
 
+#include "interrupt.hpp"
 #include "json_out.hpp"
 #include "scene_json.hpp"
 #include "step_options.hpp"
@@ -52,9 +53,20 @@ int simulate(const Json& doc, const SimulateOptions& options, const StepOptions&
 
   OutputSink out(options.out);  // nothing appears at --out unless the whole run succeeds
   auto emit = [&](const OutJson& line) {
-    if (!all_finite(line))
-      throw Failure(file + ": the simulation produced a non-finite value at step " +
-                    std::to_string(world.step_count()) + " (step size too large?)");
+    const std::string bad = first_non_finite(line);
+    if (!bad.empty()) {  // the state is finite (checked_step), so a total or a body's momentum overflowed
+      std::string what = bad.substr(0, bad.find('[')), hint;
+      if (what == "bodies") {
+        const std::size_t i = std::stoul(bad.substr(7));
+        const std::size_t dot = bad.find('.');
+        what = bad.substr(dot + 1, bad.find('[', dot) - dot - 1) + " of body '" + world.name(BodyId{std::uint32_t(i)}) + "'";
+      } else {
+        what = "total " + what;
+        hint = fastest_body(world) + "; ";
+      }
+      throw Failure(file + ": the " + what + " overflowed to a non-finite value at step " +
+                    std::to_string(world.step_count()) + " (" + hint + "are the initial speeds or masses too large?)");
+    }
     out.write_line(line.dump());
   };
 
@@ -63,14 +75,21 @@ int simulate(const Json& doc, const SimulateOptions& options, const StepOptions&
     checked_step(world, h, file);
     if (s % run.every == 0) emit(state_line(world));
   }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016" PRIx64, world.state_hash());
   if (options.hash) {
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016" PRIx64, world.state_hash());
     OutJson line;
     line["state_hash"] = hex;
     out.write_line(line.dump());
   }
+  throw_if_interrupted();
   out.commit();
+  if (!options.out.empty()) {  // the states went to the file: say where, and show the hash
+    const std::int64_t lines = run.steps / run.every + 1;
+    std::printf("wrote %lld state%s (steps 0..%lld) to %s%s%s\n", (long long)lines, lines == 1 ? "" : "s",
+                (long long)run.steps, options.out.c_str(), options.hash ? "; state hash " : "",
+                options.hash ? hex : "");
+  }
   return kExitOk;
 }
 

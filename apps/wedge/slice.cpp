@@ -16,6 +16,15 @@ namespace wedge::cli {
 
 namespace {
 
+// "x3 = 0.5" in 4D, "x4 = 1, x3 = 0" in 5D: the hyperplanes the offsets name.
+template <int N>
+std::string slice_description(const std::vector<double>& w) {
+  std::string d;
+  for (int i = 0; i < N - 3; ++i)
+    d += (d.empty() ? "x" : ", x") + std::to_string(N - 1 - i) + " = " + format_number(i < int(w.size()) ? w[std::size_t(i)] : 0.0);
+  return d.empty() ? "(the whole 3D scene)" : d;
+}
+
 std::string obj_numbers(const char* tag, const Eigen::Vector3d& v) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "%s %.9g %.9g %.9g", tag, v.x(), v.y(), v.z());
@@ -59,6 +68,9 @@ int slice(const Json& doc, const SliceOptions& o, const std::vector<double>& w, 
       base_n += 3 * m.cells.size();
     }
     out.commit();
+    if (base_v == 1)  // nothing met the slice: say so rather than leave an empty file unexplained
+      std::fprintf(stderr, "wedge: warning: %s: the slice %s meets no body; %s holds no geometry\n", file.c_str(),
+                   slice_description<N>(w).c_str(), o.obj.c_str());
     return kExitOk;
   }
 }

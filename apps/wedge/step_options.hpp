@@ -5,11 +5,15 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cli_error.hpp"
+#include "interrupt.hpp"
+#include "scene_json.hpp"
 #include "wedge/world.hpp"
 
 namespace wedge::cli {
@@ -39,7 +43,8 @@ struct StepOptions {
   std::optional<double> dt;
 };
 
-// --steps N (required, >= 0), --every K (>= 1), --dt H (finite, > 0); throws Failure naming `scene`.
+// --steps N (required, >= 0), --every K (>= 1), --dt H (in [kMinTimestep, kMaxTimestep] s); throws Failure
+// naming `scene`.
 inline StepOptions parse_step_options(const std::string& scene, const std::string& steps, const std::string& dt,
                                       const std::string& every) {
   const std::string prefix = scene + ": ";
@@ -51,33 +56,51 @@ inline StepOptions parse_step_options(const std::string& scene, const std::strin
     throw Failure(prefix + "--every must be an integer >= 1 (got '" + every + "')");
   if (!dt.empty()) {
     double h = 0.0;
-    if (!parse_double(dt, h) || !std::isfinite(h) || !(h > 0.0))
-      throw Failure(prefix + "--dt must be a finite number > 0 (got '" + dt + "')");
+    if (!parse_double(dt, h) || !(h >= kMinTimestep && h <= kMaxTimestep))
+      throw Failure(prefix + "--dt must be a step size in [1e-6, 0.1] s (got '" + dt + "')");
     run.dt = h;
   }
   return run;
 }
 
-// The first body whose state is not finite, or -1.
+// The first body whose state is not finite and the quantity that is not: {-1, ""} if all are.
 template <int N>
-int first_non_finite_body(const World<N>& world) {
+std::pair<int, const char*> first_non_finite_state(const World<N>& world) {
   for (int i = 0; i < world.body_count(); ++i) {
     const Body<N>& b = world.body(BodyId{std::uint32_t(i)});
-    if (!b.center.allFinite() || !b.rotor.all_finite() || !b.velocity.allFinite() ||
-        !b.angular_velocity.all_finite())
-      return i;
+    if (!b.center.allFinite()) return {i, "position"};
+    if (!b.rotor.all_finite()) return {i, "rotor"};
+    if (!b.velocity.allFinite()) return {i, "velocity"};
+    if (!b.angular_velocity.all_finite()) return {i, "angular velocity"};
   }
-  return -1;
+  return {-1, ""};
 }
 
-// Steps once and throws Failure if a body's state became non-finite.
+// The body with the largest speed (m/s): the likely cause when a total overflows.
+template <int N>
+std::string fastest_body(const World<N>& world) {
+  int best = -1;
+  double speed = -1.0;
+  for (int i = 0; i < world.body_count(); ++i) {
+    const double v = world.body(BodyId{std::uint32_t(i)}).velocity.stableNorm();  // no overflow of the squares
+    if (!(v <= speed)) best = i, speed = v;
+  }
+  if (best < 0) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g m/s", speed);
+  return "the fastest body is '" + world.name(BodyId{std::uint32_t(best)}) + "' at " + text;
+}
+
+// Steps once (after a check for Ctrl-C) and throws Failure naming the body and the quantity if a state became non-finite.
 template <int N>
 void checked_step(World<N>& world, double h, const std::string& scene) {
+  throw_if_interrupted();  // Ctrl-C: unwind, removing partial output
   world.step(h);
-  const int bad = first_non_finite_body(world);
+  const auto [bad, what] = first_non_finite_state(world);
   if (bad >= 0)
-    throw Failure(scene + ": the simulation produced a non-finite value at step " + std::to_string(world.step_count()) +
-                  " (body '" + world.name(BodyId{std::uint32_t(bad)}) + "'; step size too large?)");
+    throw Failure(scene + ": the simulation produced a non-finite " + what + " of body '" +
+                  world.name(BodyId{std::uint32_t(bad)}) + "' at step " + std::to_string(world.step_count()) +
+                  " (are the step size or the initial speeds too large?)");
 }
 
 }  // namespace wedge::cli

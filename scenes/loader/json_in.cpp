@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace wedge::cli {
@@ -45,14 +47,69 @@ std::string index_path(const std::string& parent, std::size_t index) {
   return parent + "[" + std::to_string(index) + "]";
 }
 
+namespace {
+
+// Refuses a key that appears twice in one object (nlohmann keeps the last one silently), naming the
+// object's path. Tracks the path through the parser's events: objects and arrays open and close, keys
+// name the next value, and each finished value advances the index of the array around it.
+class DuplicateKeyCheck {
+ public:
+  bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
+    switch (event) {
+      case Json::parse_event_t::object_start: open(false); break;
+      case Json::parse_event_t::array_start: open(true); break;
+      case Json::parse_event_t::key: {
+        Frame& f = frames_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw JsonError(path(), "duplicate key '" + f.key + "' (each key may appear once in an object)");
+        break;
+      }
+      case Json::parse_event_t::object_end:
+      case Json::parse_event_t::array_end:
+        frames_.pop_back();
+        finished_value();
+        break;
+      case Json::parse_event_t::value: finished_value(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void open(bool array) { frames_.push_back(Frame{array, 0, {}, {}}); }
+  void finished_value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  // The path of the innermost open object, as the loader's messages write it.
+  std::string path() const {
+    std::string p;
+    for (std::size_t i = 0; i + 1 < frames_.size(); ++i)
+      p = frames_[i].array ? index_path(p, frames_[i].index) : child_path(p, frames_[i].key);
+    return p;
+  }
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 Json read_json_file(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw Failure(file + ": is a folder, not a JSON file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Failure(file + ": cannot open file (" + std::strerror(errno) + ")");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw Failure(file + ": cannot read file");
   try {
-    return Json::parse(text.str());
+    return Json::parse(text.str(), DuplicateKeyCheck{});
+  } catch (const JsonError& e) {
+    throw Failure(file + ": " + (e.path().empty() ? std::string("top level: ") : std::string()) + e.what());
   } catch (const Json::parse_error& e) {
     throw Failure(file + ": malformed JSON: " + strip_exception_tag(e.what()));
   } catch (const Json::exception& e) {  // e.g. number overflow: "1e400"

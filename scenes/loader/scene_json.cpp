@@ -205,7 +205,8 @@ Scene<N> load_scene(const Json& doc, const std::string& file) {
     if (auto n = obj.optional("gravity")) scene.settings.gravity = n->vec<N>();
     if (auto n = obj.optional("timestep")) {
       scene.timestep = n->number();
-      if (!(scene.timestep > 0.0)) n->fail("must be > 0 (got " + n->json().dump() + ")");
+      if (!(scene.timestep >= kMinTimestep && scene.timestep <= kMaxTimestep))
+        n->fail("must be in [1e-6, 0.1] s (got " + n->json().dump() + ")");
     }
     scene.settings.gyroscopic = obj.boolean_or("gyroscopic", true);
     if (auto n = obj.optional("gyroscopic_method")) {

@@ -72,6 +72,20 @@ class TempDir {
     fs::remove(err);
     return r;
   }
+  // Runs a shell script in this folder with $WEDGE naming the program (for signals and pipes).
+  Result shell(const std::string& script) const {
+    const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
+    const std::string cmd = "cd '" + path_.string() + "' && WEDGE='" + kWedge + "' sh -c '" + script + "' >'" + out +
+                            "' 2>'" + err + "'";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_file(out);
+    r.err = read_file(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
   // The names in the folder (without the captured outputs).
   std::vector<std::string> listing() const {
     std::vector<std::string> names;
