@@ -231,3 +231,120 @@ TEST_CASE("3D box-box agrees with Bullet", "[oracle][bullet]") {
   CHECK(compared > 1500);
   CHECK(bullet_epa_wrong <= compared / 100);  // seen: 1 in 2000
 }
+
+// ---- exactly touching features (issue: two face-touching tesseracts gave a non-finite depth, and one
+// contact point instead of eight). Touching pairs are built so that their faces coincide to round-off.
+namespace {
+
+// A rotation that fixes axis `keep` and turns the other N-1 axes at random (a turn "about the normal").
+template <int N>
+Mat<N> turn_about_axis(int keep, std::mt19937_64& rng) {
+  Mat<N> t = Mat<N>::Identity();
+  if constexpr (N > 2) {
+    const Eigen::MatrixXd r = oracle::random_rotation(N - 1, rng);
+    for (int i = 0, ri = 0; i < N; ++i) {
+      if (i == keep) continue;
+      for (int j = 0, rj = 0; j < N; ++j) {
+        if (j == keep) continue;
+        t(i, j) = r(ri, rj++);
+      }
+      ++ri;
+    }
+  }
+  return t;
+}
+
+// Whether the world point lies in the box placed by t, grown by tol.
+template <int N>
+bool in_box(const Vec<N>& h, const Transform<N>& t, const Vec<N>& x, double tol) {
+  return ((t.apply_inverse(x)).cwiseAbs() - h).maxCoeff() <= tol;
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("Exactly face-touching boxes give a finite zero depth, the face normal and the full manifold, "
+                   "and touch by LP",
+                   "[oracle][touching]", D2, D3, D4, D5, D6) {
+  constexpr int N = TestType::value;
+  std::mt19937_64 rng(700 + N);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  // Round-off band: coordinates are O(1), every computation here is a few operations deep (1e-15), and
+  // the engine treats gaps below 1e-9 of the size as touching; anything larger is a real error.
+  constexpr double kTol = 1e-9;
+  for (int trial = 0; trial < 100; ++trial) {
+    Vec<N> ha, hb;
+    for (int i = 0; i < N; ++i) ha[i] = 0.2 + 0.8 * u01(rng), hb[i] = 0.2 + 0.8 * u01(rng);
+    const int axis = trial % N;         // the touching faces are a's +axis face and b's -axis face
+    const bool general = trial % 2 == 1;  // a axis-aligned (the fig1 case), or turned at random
+    const Shape<N> a = Shape<N>::box(ha), b = Shape<N>::box(hb);
+    Transform<N> ta, tb;
+    ta.position = Vec<N>::NullaryExpr([&] { return u01(rng) - 0.5; });
+    if (general) ta.rotation = Mat<N>(oracle::random_rotation(N, rng));
+    // b on a's face, turned about the face normal, shifted along the face by less than a's extent.
+    Vec<N> shift = Vec<N>::Zero();
+    for (int i = 0; i < N; ++i)
+      if (i != axis) shift[i] = (u01(rng) - 0.5) * ha[i];
+    shift[axis] = ha[axis] + hb[axis];
+    tb.position = ta.position + ta.rotation * shift;
+    tb.rotation = ta.rotation * turn_about_axis<N>(axis, rng);
+    const Vec<N> normal = ta.rotation.col(axis);
+    INFO("trial " << trial << " axis " << axis);
+
+    const oracle::LpSeparation lp =
+        oracle::lp_separation(world_points(box_corners<N>(ha), ta), world_points(box_corners<N>(hb), tb));
+    REQUIRE(lp.optimal);
+    CHECK(lp.distance <= kBand);  // the construction does touch
+
+    CollisionSettings settings;  // margin 0, exact separation on: the `wedge collide` settings
+    const Manifold<N> m = collide(a, ta, b, tb, settings);
+    REQUIRE(std::isfinite(m.depth));
+    CHECK(std::abs(m.depth) <= kTol);
+    CHECK((m.normal - normal).norm() <= kTol);
+    // The same pair pressed 1e-7 m together (which always worked) gives the contact region's points:
+    // the touching pair must give as many, every one on both boxes' faces.
+    Transform<N> pressed = tb;
+    pressed.position -= 1e-7 * normal;
+    const Manifold<N> ref = collide(a, ta, b, pressed, settings);
+    CHECK(ref.count >= N);  // an (N-1)-dimensional contact region has at least N corners
+    CHECK(m.count == ref.count);
+    for (int k = 0; k < m.count; ++k) {
+      const Vec<N>& x = m.points[std::size_t(k)].point;
+      CHECK(std::abs(m.points[std::size_t(k)].depth) <= kTol);
+      CHECK(in_box<N>(ha, ta, x, kTol));
+      CHECK(in_box<N>(hb, tb, x, kTol));
+    }
+  }
+}
+
+TEMPLATE_TEST_CASE("A polytope and its mirror image across one of its facets touch along the whole facet",
+                   "[oracle][touching]", D2, D3, D4, D5, D6) {
+  constexpr int N = TestType::value;
+  std::mt19937_64 rng(800 + N);
+  constexpr double kTol = 1e-9;  // as above: round-off of O(1) coordinates, far below any real gap
+  for (int trial = 0; trial < 40; ++trial) {
+    const oracle::Points pts = oracle::random_points_in_ball(N, N + 4 + trial % 6, 1.0, oracle::Point::Zero(N), rng);
+    std::vector<Vec<N>> pa;
+    for (const auto& q : pts) pa.push_back(Vec<N>(q));
+    const Shape<N> a = Shape<N>::polytope(pa);
+    const auto& facets = a.features()->facets;
+    const auto& f = facets[std::size_t(trial) % facets.size()];
+    std::vector<Vec<N>> pb;  // the mirror image across f's plane: f's vertices stay (to round-off)
+    for (const Vec<N>& x : a.features()->vertices) pb.push_back(x - 2.0 * (f.normal.dot(x) - f.offset) * f.normal);
+    const Shape<N> b = Shape<N>::polytope(pb);
+    const Transform<N> t;  // both placed as given
+    INFO("trial " << trial << ", facet with " << f.vertices.size() << " vertices");
+
+    const oracle::LpSeparation lp = oracle::lp_separation(world_points(pa, t), world_points(pb, t));
+    REQUIRE(lp.optimal);
+    CHECK(lp.distance <= kBand);
+
+    const Manifold<N> m = collide(a, t, b, t, CollisionSettings{});
+    REQUIRE(std::isfinite(m.depth));
+    CHECK(std::abs(m.depth) <= kTol);
+    CHECK((m.normal - f.normal).norm() <= kTol);
+    // The facet is the contact region: its corners, as many as a manifold holds.
+    CHECK(m.count == std::min<int>(int(f.vertices.size()), kMaxManifoldPoints<N>));
+    for (int k = 0; k < m.count; ++k)
+      CHECK(std::abs(f.normal.dot(m.points[std::size_t(k)].point) - f.offset) <= kTol);
+  }
+}

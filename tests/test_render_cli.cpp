@@ -1,6 +1,7 @@
 // `wedge render`, run as a user would (support/cli_runner.hpp): a small 4D scene rendered to PNG frames
 // (count, size, the body's own colour present, the background elsewhere), and bad input: exit code 2,
-// one message naming the file, and no frames written.
+// one message naming the file, and no frames written. --sheet: one PNG grid of evenly picked frames, of
+// the size its layout gives, each tile showing the body; a failed write leaves none of the run's files.
 #include <png.h>
 
 #include <catch2/catch.hpp>
@@ -88,6 +89,75 @@ TEST_CASE("wedge render: bad input exits 2 naming the file and writes no frames"
     CHECK(r.code == 2);
     CHECK(r.err.rfind(std::string("wedge: ") + c.message, 0) == 0);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(!fs::exists(dir.path() / "f"));
+  }
+}
+
+TEST_CASE("wedge render --sheet writes a contact sheet of evenly picked frames", "[cli][render]") {
+  TempDir dir;
+  dir.write("t.json", kTesseract);
+  // 31 frames (steps 0, 2, .., 60): 12 tiles of 96 x 64, 4 to a row, 4-pixel borders.
+  const Result r = dir.run("render t.json --steps 60 --every 2 --out frames --size 96x64 --sheet sheet.png");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("and a sheet of 12") != std::string::npos);
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir.path() / "frames")) names.push_back(e.path().filename().string());
+  CHECK(names.size() == 31);  // and no leftover .part files
+  for (const std::string& n : names) CHECK(n.rfind("frame_", 0) == 0);
+  const Image sheet = read_png(dir.path() / "sheet.png");
+  CHECK(sheet.width == 4 + 4 * (96 + 4));
+  CHECK(sheet.height == 4 + 3 * (64 + 4));
+  for (int t = 0; t < 12; ++t) {
+    const int x0 = 4 + (t % 4) * 100, y0 = 4 + (t / 4) * 68;
+    long red = 0;
+    for (int y = y0; y < y0 + 64; ++y)
+      for (int x = x0; x < x0 + 96; ++x) {
+        const std::size_t i = (std::size_t(y) * std::size_t(sheet.width) + std::size_t(x)) * 4;
+        red += (sheet.rgba[i] > 2 * sheet.rgba[i + 1] + 20 && sheet.rgba[i] > 2 * sheet.rgba[i + 2] + 20) ? 1 : 0;
+      }
+    INFO("tile " << t);
+    CHECK(red > 96 * 64 / 20);
+    const std::size_t border = (std::size_t(y0 - 1) * std::size_t(sheet.width) + std::size_t(x0)) * 4;
+    CHECK(sheet.rgba[border] == 40);
+  }
+  // The first tile is frame 0 exactly, box-filtered 1:1 below its label box.
+  const Image first = read_png(dir.path() / "frames" / "frame_00000.png");
+  for (int y = 20; y < 64; y += 7)
+    for (int x = 0; x < 96; x += 5) {
+      const std::size_t a = (std::size_t(y) * 96 + std::size_t(x)) * 4;
+      const std::size_t b = (std::size_t(4 + y) * std::size_t(sheet.width) + std::size_t(4 + x)) * 4;
+      REQUIRE(first.rgba[a] == sheet.rgba[b]);
+    }
+  // The sheet may go into the folder the run creates; fewer frames than tiles give one tile each.
+  const Result r2 = dir.run("render t.json --steps 4 --every 2 --out new --size 96x64 --sheet new/s.png");
+  INFO(r2.err);
+  REQUIRE(r2.code == 0);
+  const Image small = read_png(dir.path() / "new" / "s.png");
+  CHECK(small.width == 4 + 3 * 100);
+  CHECK(small.height == 4 + 68);
+}
+
+TEST_CASE("wedge render: a failed write removes the frames written so far; a bad --sheet writes nothing",
+          "[cli][render]") {
+  TempDir dir;
+  dir.write("t.json", kTesseract);
+  // frame_00003.png is a folder: the fourth frame cannot be written.
+  fs::create_directories(dir.path() / "frames" / "frame_00003.png");
+  const Result r = dir.run("render t.json --steps 10 --every 2 --out frames --size 64x48 --sheet sheet.png");
+  CHECK(r.code == 2);
+  CHECK(r.err.rfind("wedge: ", 0) == 0);
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir.path() / "frames")) left.push_back(e.path().filename().string());
+  CHECK(left == std::vector<std::string>{"frame_00003.png"});
+  CHECK(!fs::exists(dir.path() / "sheet.png"));
+
+  for (const char* args : {"render t.json --steps 2 --out f --sheet nowhere/s.png",
+                           "render t.json --steps 2 --out f --sheet ."}) {
+    const Result b = dir.run(args);
+    INFO(args << "\n" << b.err);
+    CHECK(b.code == 2);
+    CHECK(b.err.rfind("wedge: t.json: --sheet", 0) == 0);
     CHECK(!fs::exists(dir.path() / "f"));
   }
 }

@@ -1,6 +1,8 @@
 // World::step against closed forms: free fall and projectiles, impulses, the 3D torque-free top
 // (Jacobi elliptic functions, Landau & Lifshitz 37), conservation in 4D-6D, rotor health over 1e6 steps.
 #include <catch2/catch.hpp>
+
+#include <Eigen/LU>  // determinant()
 #include <atomic>
 #include <cmath>
 #include <cstdlib>

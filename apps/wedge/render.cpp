@@ -1,20 +1,30 @@
 // wedge render SCENE.json --steps N [--every K] [--dt H] [--w W] --out DIR [--size WxH] [--subdivisions S]
+//              [--sheet FILE.png]
 //
 // Simulates a scene and draws the 3D slice of every K-th state (step 0 included) offscreen, through
-// OSMesa, into DIR/frame_00000.png, frame_00001.png, ... Everything is checked and the whole run is
-// simulated before the first frame is written; if writing fails, the frames written so far are removed.
-// The camera frames every body's slice over the whole run from an elevated three-quarter view with the
-// scene's "down" (gravity, projected into the slice) pointing down the screen, unless the scene's
-// "view" says otherwise (docs/scene-format.md).
+// OSMesa, into DIR/frame_00000.png, frame_00001.png, ... and, with --sheet, one contact sheet: up to 12
+// of those frames picked evenly over the run (first and last included), downscaled into a grid 4 wide,
+// each labelled with its time. Everything is checked and the whole run is simulated before the first
+// frame is written. Every PNG is written atomically (a .part file renamed into place); if anything fails
+// or the run is interrupted (Ctrl-C) while writing, the frames and sheet written so far are removed, and
+// so is the output folder if this run made it and it is left empty.
+// The camera looks from an elevated three-quarter view with the scene's "down" (gravity, projected into
+// the slice) pointing down the screen, at a distance that just fits, with a margin, every body's slice in
+// every drawn frame and its shadow on the ground, unless the scene's "view" says otherwise
+// (docs/scene-format.md).
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
+#include "interrupt.hpp"
 #include "scene_slices.hpp"
 #include "verbs.hpp"
 #include "wedge/render/offscreen_context.hpp"
@@ -71,12 +81,56 @@ struct Pose {
   Rotor<N> rotor;
 };
 
+// The sheet's tiles: at most this many frames, this many to a row, at most this wide (px).
+constexpr int kSheetTiles = 12, kSheetColumns = 4, kSheetTileWidth = 400;
+
+// A path made absolute and normal, without a trailing separator (for comparing folders).
+fs::path normal_path(const fs::path& p) {
+  fs::path a = fs::absolute(p).lexically_normal();
+  if (!a.has_filename() && a.has_parent_path() && a != a.root_path()) a = a.parent_path();
+  return a;
+}
+
+// The camera's view direction (from the target toward the eye) and screen axes for a given up.
+struct ViewAxes {
+  Eigen::Vector3d dir, right, screen_up;
+};
+
+ViewAxes default_view_axes(const Eigen::Vector3d& up) {
+  // Toward the viewer: the slice axis least aligned with up (z when up is y), then right = up x it.
+  Eigen::Index axis = 0;
+  (Eigen::Vector3d(0.5, 0.5, 0.0) + up.cwiseAbs()).minCoeff(&axis);  // prefers z, then x
+  Eigen::Vector3d toward = Eigen::Vector3d::Unit(axis) - up * up(axis);
+  toward.normalize();
+  const Eigen::Vector3d right = up.cross(toward);
+  // About 30 degrees above the ground and 28 to the side: the ground and the shadows on it show well.
+  const Eigen::Vector3d dir = (0.85 * toward + 0.55 * up + 0.45 * right).normalized();
+  const Eigen::Vector3d f = -dir;  // as Camera::view() builds its axes
+  const Eigen::Vector3d s = f.cross(up).normalized();
+  return {dir, s, s.cross(f)};
+}
+
+// The distance from `target` along ax.dir at which every point lies within `fill` of the picture's half
+// width and half height (tan_x, tan_y: tangents of the half fields of view), and at least `min_depth`
+// in front of the eye.
+double fit_distance(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& target, const ViewAxes& ax,
+                    double tan_x, double tan_y, double fill, double min_depth) {
+  double d = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d q = p - target;
+    const double need = std::max({std::abs(ax.right.dot(q)) / (fill * tan_x),
+                                  std::abs(ax.screen_up.dot(q)) / (fill * tan_y), min_depth});
+    d = std::max(d, ax.dir.dot(q) + need);
+  }
+  return d;
+}
+
 template <int N>
 int render(const Json& doc, const RenderOptions& o, const StepOptions& run, const std::vector<double>& w,
-           int subdivisions, const Size& size) {
+           int subdivisions, const Size& size, const std::string& sheet_path) {
   const std::string& file = o.scene;
   if constexpr (N < 3) {
-    (void)doc, (void)run, (void)w, (void)subdivisions, (void)size;
+    (void)doc, (void)run, (void)w, (void)subdivisions, (void)size, (void)sheet_path;
     throw Failure(file + ": a 2D scene cannot be rendered (render shows 3D slices of 3D..6D scenes)");
   } else {
     const Scene<N> scene = load_scene<N>(doc, file);
@@ -84,9 +138,11 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     World<N> world = scene.make_world(file);
     SceneSlices<N> slices(scene, w, subdivisions, file);
 
-    // Simulate first: the states of the frames to draw, and the bounds of everything the camera shows.
+    // Simulate first: the states of the frames to draw, and the corners of the box around every body's
+    // slice in every one of them: what the camera must show.
     std::vector<std::vector<Pose<N>>> frames;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+    std::vector<Eigen::Vector3d> points;
+    std::vector<slicing::DisplayMesh<3>> meshes;
     auto record = [&] {
       std::vector<Pose<N>> poses;
       for (int i = 0; i < world.body_count(); ++i) {
@@ -94,85 +150,128 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
         poses.push_back({b.center, b.rotor});
       }
       frames.push_back(std::move(poses));
-      for (std::size_t k = 0; k < slices.entries().size(); ++k)
-        if (const auto ball = slices.slice_bound(world, k)) {
-          lo = lo.cwiseMin(ball->first - Eigen::Vector3d::Constant(ball->second));
-          hi = hi.cwiseMax(ball->first + Eigen::Vector3d::Constant(ball->second));
-        }
+      slices.slice(world, meshes);
+      for (const slicing::DisplayMesh<3>& m : meshes) {
+        if (m.empty()) continue;
+        Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+        for (const Eigen::Vector3d& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+        for (int c = 0; c < 8; ++c)
+          points.emplace_back((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
+      }
     };
     Progress sim_progress("simulate", run.steps);
     record();
     for (std::int64_t s = 1; s <= run.steps; ++s) {
-      checked_step(world, h, file);
+      checked_step(world, h, file);  // checks for Ctrl-C first
       if (s % run.every == 0) record();
       if (s % 64 == 0) sim_progress.update(s);
     }
     sim_progress.update(run.steps);
     sim_progress.finish();
 
-    // Camera: up against gravity as seen in the slice; target the middle of the bounds.
+    const bool any = !points.empty();
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(any ? INFINITY : -1.0), hi = -lo;
+    for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const double radius = std::max(0.5, (hi - lo).norm() / 2);  // the scene's size, for grid and margins
+
+    // Up against gravity as seen in the slice.
     Eigen::Vector3d up = -slices.to_slice_vector(scene.settings.gravity);
     if (!(up.norm() > 1e-9 * std::max(1.0, scene.settings.gravity.norm()))) up = Eigen::Vector3d::UnitY();
     up.normalize();
-    const bool any = lo.x() <= hi.x();
-    const Eigen::Vector3d center = any ? Eigen::Vector3d((lo + hi) / 2) : Eigen::Vector3d::Zero();
-    const double radius = any ? std::max(0.5, (hi - lo).norm() / 2) : 2.0;
-    render::Camera camera;
-    camera.up = up;
-    camera.fov_y_degrees = scene.view.fov_degrees.value_or(40.0);
-    camera.target = scene.view.target ? Eigen::Vector3d((*scene.view.target)[0], (*scene.view.target)[1], (*scene.view.target)[2])
-                                      : center;
-    if (scene.view.eye) {
-      camera.eye = Eigen::Vector3d((*scene.view.eye)[0], (*scene.view.eye)[1], (*scene.view.eye)[2]);
-    } else {
-      // Toward the viewer: the slice axis least aligned with up (z when up is y), then right = up x it.
-      Eigen::Index axis = 0;
-      (Eigen::Vector3d(0.5, 0.5, 0.0) + up.cwiseAbs()).minCoeff(&axis);  // prefers z, then x
-      Eigen::Vector3d toward = Eigen::Vector3d::Unit(axis) - up * up(axis);
-      toward.normalize();
-      const Eigen::Vector3d right = up.cross(toward);
-      const Eigen::Vector3d dir = (0.85 * toward + 0.45 * up + 0.45 * right).normalized();
-      const double half_fov = camera.fov_y_degrees * M_PI / 360.0;
-      const double half_fov_x = std::atan(std::tan(half_fov) * size.width / size.height);
-      // The bounds' sphere just fits the narrower field of view (its rim may touch the frame's edge).
-      camera.eye = camera.target + dir * (radius / std::tan(std::min(half_fov, half_fov_x)));
-    }
-    const double dist = (camera.eye - camera.target).norm();
-    camera.near_plane = std::max(1e-3, 0.02 * dist);
-    camera.far_plane = 10 * dist + 100.0;
 
-    // Ground: the scene's halfspace, else a grid just below everything, across gravity.
+    // Ground: the scene's halfspace, else a grid just below everything, across gravity. The camera
+    // also frames the feet of the points on it, where the shadows fall.
     render::FrameDesc frame;
-    frame.camera = camera;
     frame.ground.enabled = true;
     if (const auto g = slices.ground(scene, world)) {
-      frame.ground.normal = -g->first;  // the grid faces out of the solid halfspace
-      frame.ground.offset = -g->second;
+      frame.ground.normal = g->first;  // out of the solid {n . y <= offset}
+      frame.ground.offset = g->second;
     } else {
-      double low = camera.target.dot(up) - radius;
-      if (any)
-        for (int c = 0; c < 8; ++c) {
-          const Eigen::Vector3d corner((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
-          low = std::min(low, corner.dot(up));
-        }
+      double low = any ? INFINITY : -radius;
+      for (const Eigen::Vector3d& p : points) low = std::min(low, p.dot(up));
       frame.ground.normal = up;
       frame.ground.offset = low - 0.05 * radius;
     }
     frame.ground.spacing = std::pow(10.0, std::floor(std::log10(radius))) / 2;
     frame.ground.extent = 8 * radius;
+    {
+      const Eigen::Vector3d n = frame.ground.normal;
+      const std::size_t count = points.size();
+      for (std::size_t i = 0; i < count; ++i)
+        points.push_back(points[i] - (n.dot(points[i]) - frame.ground.offset) * n);
+    }
 
-    // Draw and write.
+    // Camera: fitted to the points (90% of the narrower way), recentred on them in the picture.
+    render::Camera camera;
+    camera.up = up;
+    camera.fov_y_degrees = scene.view.fov_degrees.value_or(40.0);
+    const double tan_y = std::tan(camera.fov_y_degrees * M_PI / 360.0), tan_x = tan_y * size.width / size.height;
+    const double fill = 0.9, min_depth = 0.05 * radius;
+    auto vec3 = [](const std::array<double, 3>& a) { return Eigen::Vector3d(a[0], a[1], a[2]); };
+    camera.target = scene.view.target ? vec3(*scene.view.target) : Eigen::Vector3d((lo + hi) / 2);
+    if (scene.view.eye) {
+      camera.eye = vec3(*scene.view.eye);
+    } else if (!any) {
+      camera.eye = camera.target + default_view_axes(up).dir * 6.0;
+    } else {
+      const ViewAxes ax = default_view_axes(up);
+      double d = fit_distance(points, camera.target, ax, tan_x, tan_y, fill, min_depth);
+      // Perspective makes the fitted picture lopsided about the target: move the target across the view
+      // by the middle of the points' angular extent (a fixed point iteration; it settles in a few rounds).
+      for (int round = 0; round < 6 && !scene.view.target; ++round) {
+        double u_lo = INFINITY, u_hi = -INFINITY, v_lo = INFINITY, v_hi = -INFINITY;
+        for (const Eigen::Vector3d& p : points) {
+          const Eigen::Vector3d q = p - camera.target;
+          const double depth = d - ax.dir.dot(q);
+          const double u = ax.right.dot(q) / depth / tan_x, v = ax.screen_up.dot(q) / depth / tan_y;
+          u_lo = std::min(u_lo, u), u_hi = std::max(u_hi, u), v_lo = std::min(v_lo, v), v_hi = std::max(v_hi, v);
+        }
+        camera.target += d * ((u_lo + u_hi) / 2 * tan_x * ax.right + (v_lo + v_hi) / 2 * tan_y * ax.screen_up);
+        d = fit_distance(points, camera.target, ax, tan_x, tan_y, fill, min_depth);
+      }
+      camera.eye = camera.target + ax.dir * d;
+    }
+    const double dist = (camera.eye - camera.target).norm();
+    double nearest = dist;
+    for (const Eigen::Vector3d& p : points)
+      nearest = std::min(nearest, (p - camera.eye).dot(camera.target - camera.eye) / dist);
+    camera.near_plane = std::max(1e-3, std::min(0.02 * dist, 0.5 * nearest));
+    camera.far_plane = 10 * dist + 10 * frame.ground.extent;
+    frame.camera = camera;
+
+    // The sheet's tiles: frames spread evenly over the run, the first and the last included.
+    const int frame_count = int(frames.size());
+    const int tiles = std::min(frame_count, kSheetTiles);
+    auto tile_frame = [&](int i) {
+      if (tiles == 1) return 0;
+      return int((2 * std::int64_t(i) * (frame_count - 1) + tiles - 1) / (2 * std::int64_t(tiles - 1)));
+    };
+    std::optional<render::ContactSheet> sheet;
+    if (!sheet_path.empty()) {
+      const int tw = std::min(size.width, kSheetTileWidth);
+      const int th = std::max(1, int(std::lround(double(size.height) * tw / size.width)));
+      sheet.emplace(tiles, kSheetColumns, tw, th);
+    }
+
+    // Draw and write. On any failure or interruption: remove what this run wrote, then rethrow.
     render::OffscreenContext context(size.width, size.height);
     render::Renderer renderer;
-    std::vector<slicing::DisplayMesh<3>> meshes;
     const fs::path dir(o.out);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir)) throw Failure(o.out + ": cannot create the output folder (" + ec.message() + ")");
-    std::vector<fs::path> written;
+    std::vector<fs::path> written, created;  // created: folders this run made, deepest first
+    bool sheet_written = false;
     Progress progress("render", std::int64_t(frames.size()));
     try {
+      for (fs::path p = normal_path(dir); !p.empty() && !fs::exists(p); p = p.parent_path()) {
+        created.push_back(p);
+        if (p == p.parent_path()) break;
+      }
+      std::error_code ec;
+      fs::create_directories(dir, ec);
+      if (ec || !fs::is_directory(dir))
+        throw Failure(o.out + ": cannot create the output folder (" + ec.message() + ")");
+      int next_tile = 0;
       for (std::size_t f = 0; f < frames.size(); ++f) {
+        throw_if_interrupted();
         for (int i = 0; i < world.body_count(); ++i) {
           Body<N>& b = world.body(BodyId{std::uint32_t(i)});
           b.center = frames[f][std::size_t(i)].center;
@@ -189,17 +288,40 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
         renderer.draw(frame, size.width, size.height);
         char name[32];
         std::snprintf(name, sizeof name, "frame_%05zu.png", f);
+        const std::vector<std::uint8_t> pixels = context.read_rgba();
+        render::write_png((dir / name).string(), pixels, size.width, size.height);  // all or nothing
         written.push_back(dir / name);
-        render::write_png(written.back().string(), context.read_rgba(), size.width, size.height);
+        if (sheet && next_tile < tiles && tile_frame(next_tile) == int(f)) {
+          char label[32];
+          std::snprintf(label, sizeof label, "t=%.2f s", double(f) * double(run.every) * h);
+          sheet->place(next_tile++, pixels, size.width, size.height, label);
+        }
         progress.update(std::int64_t(f + 1));
       }
-    } catch (const Error& e) {
+      if (sheet) {
+        throw_if_interrupted();
+        render::write_png(sheet_path, sheet->rgba(), sheet->width(), sheet->height());
+        sheet_written = true;
+      }
+    } catch (...) {
+      progress.finish();
+      std::error_code ec;
       for (const fs::path& p : written) fs::remove(p, ec);
-      throw Failure(e.what());
+      if (sheet_written) fs::remove(sheet_path, ec);
+      for (const fs::path& p : created) fs::remove(p, ec);  // only if empty
+      try {
+        throw;
+      } catch (const Error& e) {
+        throw Failure(e.what());
+      }
     }
     progress.finish();
     std::cout << "wrote " << frames.size() << " frame" << (frames.size() == 1 ? "" : "s") << " (" << size.width << "x"
-              << size.height << ") to " << o.out << "\n";
+              << size.height << ") to " << o.out;
+    if (sheet)
+      std::cout << " and a sheet of " << tiles << " (" << sheet->width() << "x" << sheet->height() << ") to "
+                << sheet_path;
+    std::cout << "\n";
     return kExitOk;
   }
 }
@@ -220,6 +342,10 @@ CLI::App* add_render_verb(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--out,-o", o.out, "Folder for frame_00000.png, frame_00001.png, .. (created if needed)")
       ->type_name("DIR");
   cmd->add_option("--size", o.size, "Picture size in pixels (default 1280x720)")->type_name("WxH");
+  cmd->add_option("--sheet", o.sheet,
+                  "Also write a contact sheet: up to 12 frames picked evenly over the run (first and last "
+                  "included), downscaled into one PNG grid 4 wide, each labelled with its time")
+      ->type_name("FILE.png");
   cmd->add_option("--subdivisions", o.subdivisions,
                   "Tessellation level of round shapes (1..64; default 16 in 3D, 8 in 4D, 4 in 5D, 2 in 6D)")
       ->type_name("S");
@@ -235,7 +361,18 @@ int run_render(const RenderOptions& o) {
   const int n = read_dim(doc, o.scene);
   const std::vector<double> w = parse_slice_offsets(o.scene, o.w, n);
   const int subdivisions = parse_subdivisions(o.scene, o.subdivisions, n);
-  return with_dim(n, [&](auto dim) { return render<decltype(dim)::value>(doc, o, run, w, subdivisions, size); });
+  const std::string& sheet = o.sheet;
+  if (!sheet.empty()) {
+    // Its folder must exist, or be the one --out creates; checked before the run, like everything.
+    const fs::path parent = fs::path(sheet).has_parent_path() ? fs::path(sheet).parent_path() : fs::path(".");
+    if (fs::is_directory(sheet) || !fs::path(sheet).has_filename())
+      throw Failure(o.scene + ": --sheet must name a file (got '" + sheet + "')");
+    if (!fs::is_directory(parent) && normal_path(parent) != normal_path(o.out))
+      throw Failure(o.scene + ": --sheet: the folder '" + parent.string() + "' does not exist");
+  }
+  return with_dim(n, [&](auto dim) {
+    return render<decltype(dim)::value>(doc, o, run, w, subdivisions, size, sheet);
+  });
 }
 
 }  // namespace wedge::cli

@@ -38,10 +38,11 @@ CLI::App* add_collide_verb(CLI::App& app, CollideOptions& options);
 int run_collide(const CollideOptions& options);
 
 // wedge render SCENE.json --steps N [--every K] [--dt H] [--w W] --out DIR [--size WxH] [--subdivisions S]
+//   [--sheet FILE.png]
 struct RenderOptions {
   std::string scene;
   std::string steps, dt, every, w, size, subdivisions;
-  std::string out;
+  std::string out, sheet;
 };
 CLI::App* add_render_verb(CLI::App& app, RenderOptions& options);
 int run_render(const RenderOptions& options);

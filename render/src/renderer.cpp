@@ -1,7 +1,9 @@
 // OpenGL 3.3 core: one streamed vertex buffer of de-indexed slice triangles (position + corner normal),
 // one shader for meshes (Blinn-Phong with a key and a fill light and a sky/ground ambient), one for the
-// procedural ground grid. GL entry points are called directly (GL_GLEXT_PROTOTYPES): libOSMesa exports
-// them offscreen, libGL/libOpenGL in a window.
+// procedural ground grid, which also draws the shadows: each mesh flattened onto the ground plane and
+// drawn with the grid's own colour darkened, blended by GL_MIN. A pixel under several shadow triangles
+// (front and back of a body, or two bodies) thus darkens once, without a stencil buffer. GL entry points
+// are called directly (GL_GLEXT_PROTOTYPES): libOSMesa exports them offscreen, libGL/libOpenGL in a window.
 #define GL_GLEXT_PROTOTYPES 1
 #include "wedge/render/renderer.hpp"
 
@@ -9,6 +11,8 @@
 #include <GL/glext.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "wedge/error.hpp"
@@ -72,13 +76,14 @@ uniform float u_extent;
 uniform vec3 u_color;
 uniform vec3 u_line;
 uniform vec3 u_background;
+uniform float u_shade;  // 1 for the ground, less in a shadow
 out vec4 frag;
 void main() {
   vec2 p = vec2(dot(v_pos - u_origin, u_axis_u), dot(v_pos - u_origin, u_axis_v)) / u_spacing;
   vec2 w = fwidth(p);
   vec2 g = abs(fract(p - 0.5) - 0.5) / max(w, vec2(1e-6));
   float line = 1.0 - min(min(g.x, g.y), 1.0);
-  vec3 c = mix(u_color, u_line, line * 0.8);
+  vec3 c = mix(u_color, u_line, line * 0.8) * u_shade;
   float fade = smoothstep(0.45 * u_extent, u_extent, length(v_pos - u_origin));
   frag = vec4(mix(pow(c, vec3(1.0 / 2.2)), u_background, fade), 1.0);  // the clear colour is not gamma-encoded
 }
@@ -207,10 +212,52 @@ void Renderer::draw(const FrameDesc& frame, int width, int height) {
     set_color(impl_->grid_prog, "u_color", g.color);
     set_color(impl_->grid_prog, "u_line", g.line_color);
     set_color(impl_->grid_prog, "u_background", frame.background);
+    glUniform1f(glGetUniformLocation(impl_->grid_prog, "u_shade"), 1.0f);
     glBindVertexArray(impl_->grid_vao);
     glBindBuffer(GL_ARRAY_BUFFER, impl_->grid_vbo);
     glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STREAM_DRAW);
     glDrawArrays(GL_TRIANGLES, 0, 6);
+
+    // Shadows: every triangle projected straight down onto the plane. Pulled toward the camera by a
+    // polygon offset so they win the depth test against the ground they lie on, and not written to
+    // depth, so bodies drawn later are unaffected.
+    if (g.shadows && g.shadow_strength > 0.0) {
+      std::vector<float>& buf = impl_->scratch;
+      buf.clear();
+      std::vector<std::pair<GLint, GLsizei>> ranges;
+      std::vector<float> shades;
+      for (const MeshDraw& d : frame.meshes) {
+        if (d.mesh == nullptr || d.mesh->cells.empty()) continue;
+        double lowest = INFINITY;
+        for (const Eigen::Vector3d& p : d.mesh->vertices) lowest = std::min(lowest, std::abs(n.dot(p) - g.offset));
+        const double fade = g.shadow_fade > 0.0 ? g.shadow_fade / (g.shadow_fade + lowest) : 1.0;
+        const GLint first = GLint(buf.size() / 3);
+        for (const auto& cell : d.mesh->cells)
+          for (int q = 0; q < 3; ++q) {
+            const Eigen::Vector3d& p = d.mesh->vertices[std::size_t(cell[std::size_t(q)])];
+            const Eigen::Vector3d f = p - (n.dot(p) - g.offset) * n;
+            buf.insert(buf.end(), {float(f.x()), float(f.y()), float(f.z())});
+          }
+        ranges.push_back({first, GLsizei(buf.size() / 3) - first});
+        shades.push_back(float(1.0 - std::min(1.0, g.shadow_strength) * fade));
+      }
+      glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(buf.size() * sizeof(float)), buf.data(), GL_STREAM_DRAW);
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_MIN);
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(-1.0f, -4.0f);
+      glDepthFunc(GL_LEQUAL);
+      glDepthMask(GL_FALSE);
+      for (std::size_t i = 0; i < ranges.size(); ++i) {
+        glUniform1f(glGetUniformLocation(impl_->grid_prog, "u_shade"), shades[i]);
+        glDrawArrays(GL_TRIANGLES, ranges[i].first, ranges[i].second);
+      }
+      glDepthMask(GL_TRUE);
+      glDepthFunc(GL_LESS);
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      glBlendEquation(GL_FUNC_ADD);
+      glDisable(GL_BLEND);
+    }
   }
 
   // Meshes: one buffer, one draw per body.

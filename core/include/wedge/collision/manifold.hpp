@@ -36,7 +36,8 @@ template <int N>
 struct Manifold {
   bool intersecting = false;
   // Penetration depth along `normal` (>= 0 when intersecting). When the shapes are apart, minus their
-  // distance (computed by GJK), so depth < 0.
+  // distance, so depth < 0: exact (GJK) with CollisionSettings::exact_separation, else the gap along the
+  // separating axis found (a lower bound of the distance). Always finite.
   double depth = 0.0;
   Vec<N> normal = Vec<N>::Zero();  // unit, from shape a towards shape b
   int count = 0;                   // contact points (0 when the shapes are apart beyond the margin)

@@ -1,6 +1,6 @@
 // The slice renderer: draws 3D slice meshes (wedge::slicing::DisplayMesh<3>) with a colour per body,
-// diffuse + specular lighting and a ground grid into whatever framebuffer is bound, with OpenGL 3.3
-// core shaders. It knows nothing about where its pixels go: the offscreen OSMesa context
+// diffuse + specular lighting, a ground grid and the bodies' shadows on it into whatever framebuffer is
+// bound, with OpenGL 3.3 core shaders. It knows nothing about where its pixels go: the offscreen OSMesa context
 // (offscreen_context.hpp) today, a window or an OpenXR swapchain image later. A current OpenGL 3.3
 // core context is required for the Renderer's whole life.
 #pragma once
@@ -24,7 +24,10 @@ struct MeshDraw {
 };
 
 // The ground: an infinite grid on the plane {y : normal . y = offset}, drawn out to `extent` metres
-// around the camera target's foot point.
+// around the camera target's foot point. Each mesh casts a shadow on it straight down (along -normal),
+// so the gap between a body and its shadow shows its height: the ground there takes `shadow_strength`
+// of its light away for a body touching it, half that at `shadow_fade` metres up (the body's lowest
+// point). Overlapping shadows darken once, to the darkest of them.
 struct Ground {
   bool enabled = false;
   Eigen::Vector3d normal{0.0, 1.0, 0.0};
@@ -33,6 +36,9 @@ struct Ground {
   double extent = 40.0;    // m
   Color color{0.55f, 0.57f, 0.6f};
   Color line_color{0.3f, 0.32f, 0.36f};
+  bool shadows = true;
+  double shadow_strength = 0.55;  // in [0, 1]
+  double shadow_fade = 4.0;       // m
 };
 
 struct FrameDesc {
