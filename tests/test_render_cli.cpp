@@ -138,7 +138,7 @@ TEST_CASE("wedge render --sheet writes a contact sheet of evenly picked frames",
   CHECK(small.height == 4 + 68);
 }
 
-TEST_CASE("wedge render: a failed write removes the frames written so far; a bad --sheet writes nothing",
+TEST_CASE("wedge render: a failed write removes the frames written so far, and a bad --sheet writes nothing",
           "[cli][render]") {
   TempDir dir;
   dir.write("t.json", kTesseract);
