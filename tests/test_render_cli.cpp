@@ -161,3 +161,16 @@ TEST_CASE("wedge render: a failed write removes the frames written so far, and a
     CHECK(!fs::exists(dir.path() / "f"));
   }
 }
+
+TEST_CASE("wedge render names the bodies that never meet the drawn slice", "[cli][render]") {
+  TempDir dir;
+  dir.write("t.json", kTesseract);
+  const Result seen = dir.run("render t.json --steps 2 --out f --size 64x64");
+  REQUIRE(seen.code == 0);
+  CHECK(seen.err.empty());
+  // The tesseract spans w in [-0.5, 0.5]; its turn in the xw plane widens that by far less than 1 m in two
+  // steps, so x3 = 2 never meets it.
+  const Result missed = dir.run("render t.json --steps 2 --w 2 --out g --size 64x64");
+  REQUIRE(missed.code == 0);
+  CHECK(missed.err == "wedge: warning: t.json: 't' never meets the drawn slice in any frame (move the slice with --w)\n");
+}

@@ -84,9 +84,16 @@ TEST_CASE("wedge slice writes the slice as a closed outward OBJ mesh", "[cli][sl
     CHECK(directed.count({e.second, e.first}) == 1);
   }
   CHECK(volume == Approx(1.0).epsilon(1e-6));
+  // Not over-tessellated: the tesseract's 8 cells are cut as few tetrahedra (6 each), each giving at most
+  // 2 triangles, so 96 at most; the slice was 4,352 triangles when boxes were subdivided like balls.
+  CHECK(o.f.size() <= 96u);
 
-  REQUIRE(dir.run("slice s.json --w 0.9 --obj none.obj").code == 0);
+  const Result none = dir.run("slice s.json --w 0.9 --obj none.obj");
+  REQUIRE(none.code == 0);
   CHECK(parse_obj(read_file(dir.path() / "none.obj")).f.empty());
+  // An empty slice is said, not left for the user to discover in an empty file.
+  CHECK(none.err == "wedge: warning: s.json: the slice x3 = 0.9 meets no body; none.obj holds no geometry\n");
+  CHECK(r.err.empty());
 }
 
 TEST_CASE("wedge slice: bad input exits 2 naming the file and writes nothing", "[cli][slice]") {

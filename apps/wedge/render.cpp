@@ -143,6 +143,7 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     std::vector<std::vector<Pose<N>>> frames;
     std::vector<Eigen::Vector3d> points;
     std::vector<slicing::DisplayMesh<3>> meshes;
+    std::vector<bool> seen;  // per sliced body: met the slice in some drawn frame
     auto record = [&] {
       std::vector<Pose<N>> poses;
       for (int i = 0; i < world.body_count(); ++i) {
@@ -151,8 +152,11 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
       }
       frames.push_back(std::move(poses));
       slices.slice(world, meshes);
-      for (const slicing::DisplayMesh<3>& m : meshes) {
+      seen.resize(meshes.size(), false);
+      for (std::size_t k = 0; k < meshes.size(); ++k) {
+        const slicing::DisplayMesh<3>& m = meshes[k];
         if (m.empty()) continue;
+        seen[k] = true;
         Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
         for (const Eigen::Vector3d& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
         for (int c = 0; c < 8; ++c)
@@ -168,6 +172,17 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     }
     sim_progress.update(run.steps);
     sim_progress.finish();
+    // Bodies the pictures never show (out of the slice all along) are named rather than silently missing.
+    std::string unseen;
+    int unseen_count = 0;
+    for (std::size_t k = 0; k < seen.size(); ++k)
+      if (!seen[k]) {
+        unseen += (unseen.empty() ? "'" : ", '") + scene.bodies[std::size_t(slices.entries()[k].body)].def.name + "'";
+        ++unseen_count;
+      }
+    if (unseen_count > 0)
+      std::cerr << "wedge: warning: " << file << ": " << unseen << (unseen_count == 1 ? " never meets" : " never meet")
+                << " the drawn slice in any frame (move the slice with --w)\n";
 
     const bool any = !points.empty();
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(any ? INFINITY : -1.0), hi = -lo;

@@ -60,32 +60,9 @@ class TempDir {
     return p;
   }
   // Runs `wedge ARGS` in this folder (so file names in messages are the short names given).
-  Result run(const std::string& args) const {
-    const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
-    const std::string cmd = "cd '" + path_.string() + "' && '" + kWedge + "' " + args + " >'" + out + "' 2>'" + err + "'";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_file(out);
-    r.err = read_file(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  Result run(const std::string& args) const { return capture("'" + kWedge + "' " + args); }
   // Runs a shell script in this folder with $WEDGE naming the program (for signals and pipes).
-  Result shell(const std::string& script) const {
-    const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
-    const std::string cmd = "cd '" + path_.string() + "' && WEDGE='" + kWedge + "' sh -c '" + script + "' >'" + out +
-                            "' 2>'" + err + "'";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_file(out);
-    r.err = read_file(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  Result shell(const std::string& script) const { return capture("WEDGE='" + kWedge + "' sh -c '" + script + "'"); }
   // The names in the folder (without the captured outputs).
   std::vector<std::string> listing() const {
     std::vector<std::string> names;
@@ -95,6 +72,20 @@ class TempDir {
   }
 
  private:
+  // Runs the command in this folder, capturing stdout, stderr and the exit code.
+  Result capture(const std::string& command) const {
+    const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
+    const std::string cmd = "cd '" + path_.string() + "' && " + command + " >'" + out + "' 2>'" + err + "'";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_file(out);
+    r.err = read_file(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
   fs::path path_;
 };
 
