@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "collision/narrow.hpp"
+#include "instantiate.hpp"
 #include "wedge/collision/gjk.hpp"
 
 namespace wedge {
@@ -41,11 +42,7 @@ PointQuery<N> point_query(const Shape<N>& shape, const Transform<N>& t, const Ve
 }
 
 #define WEDGE_INSTANTIATE(N) template PointQuery<N> point_query<N>(const Shape<N>&, const Transform<N>&, const Vec<N>&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge

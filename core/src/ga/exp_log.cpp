@@ -1,6 +1,7 @@
 // The general (eigensolver) paths of exp and log, compiled once for N = 2..6 (see exp_log.hpp).
 #include "wedge/ga/exp_log.hpp"
 
+#include "instantiate.hpp"
 #include "linalg/decompositions.hpp"
 
 namespace wedge {
@@ -83,11 +84,7 @@ Bivector<N> log_by_decomposition(const Rotor<N>& r) {
   template BivectorDecomposition<N> decompose_generator<N>(Mat<N>);              \
   template Rotor<N> exp_by_decomposition<N>(const Bivector<N>&);                 \
   template Bivector<N> log_by_decomposition<N>(const Rotor<N>&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge
