@@ -18,7 +18,8 @@ Manifold<N> halfspace_convex(const Shape<N>& a, const Transform<N>& ta, const Sh
   m.depth = offset - n.dot(deepest);
   m.intersecting = m.depth >= 0.0;
   // The margin widened by the round-off band: a cell lying exactly on the plane keeps all its corners.
-  const double margin = settings.contact_margin + round_off_band(shape_scale(b));
+  // (The face lattice's radius where there is one: shape_scale walks a polytope's vertices every call.)
+  const double margin = settings.contact_margin + round_off_band(b.features() ? b.features()->radius : shape_scale(b));
   if (m.depth < -margin) return m;
   thread_local std::vector<SupportPoint<N>> set;
   thread_local std::vector<ContactPoint<N>> points;

@@ -95,7 +95,7 @@ void sat_manifold(const ConvexFeatures<N>& fa, const Transform<N>& ta, const Con
       // pa + sum x_i (a's directions) = pb + sum y_j (b's directions) + delta u. Nearly parallel
       // features make the system nearly singular: a rank-revealing solve drops the dependent
       // directions (their coefficients are 0) instead of sending the point metres away.
-      const Eigen::VectorXd x = linalg::solve_rank_revealing(sys, Vec<N>(vb[sb[0]] - va[sa[0]]), 1e-6);
+      const linalg::SmallVector x = linalg::solve_rank_revealing(sys, Vec<N>(vb[sb[0]] - va[sa[0]]), 1e-6);
       Vec<N> pa = va[sa[0]];
       for (Eigen::Index i = 0; i < from_a; ++i) pa += x[i] * sys.col(i);
       // pa should lie on a, and pa - pen u on b. Where the closest approach of the features' spans

@@ -28,8 +28,8 @@ bool symmetric_eigen(const Eigen::MatrixXd& s, Eigen::VectorXd& values, Eigen::M
   return true;
 }
 
-Eigen::VectorXd solve_rank_revealing(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, double threshold) {
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+SmallVector solve_rank_revealing(const SmallMatrix& a, const SmallVector& b, double threshold) {
+  Eigen::ColPivHouseholderQR<SmallMatrix> qr(a);
   qr.setThreshold(threshold);
   return qr.solve(b);
 }

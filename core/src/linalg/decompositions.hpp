@@ -23,8 +23,13 @@ Eigen::VectorXd symmetric_eigenvalues(const Eigen::MatrixXd& s);
 // False when the iteration did not converge.
 bool symmetric_eigen(const Eigen::MatrixXd& s, Eigen::VectorXd& values, Eigen::MatrixXd& vectors);
 
+// Matrices of at most 6 x 6 (the largest N) with their storage inline: no heap allocation, for the
+// narrow phase, which runs in every step.
+using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
 // The least-squares solution of a x = b by column-pivoting QR, with the directions whose pivots fall below
 // `threshold` (relative to the largest) dropped: their coefficients are 0 (rank-revealing).
-Eigen::VectorXd solve_rank_revealing(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, double threshold);
+SmallVector solve_rank_revealing(const SmallMatrix& a, const SmallVector& b, double threshold);
 
 }  // namespace wedge::linalg
