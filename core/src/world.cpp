@@ -131,9 +131,11 @@ World<N>::World(const World& o)
       names_(o.names_),
       shapes_(o.shapes_),
       materials_(o.materials_),
+      user_data_(o.user_data_),
       contact_(std::make_unique<contact::ContactState<N>>(*o.contact_)),
       steps_(o.steps_),
-      time_(o.time_) {}
+      time_(o.time_),
+      time_error_(o.time_error_) {}
 template <int N>
 World<N>& World<N>::operator=(const World& o) {
   if (this != &o) *this = World(o);
@@ -150,28 +152,122 @@ BodyId World<N>::add_body(const BodyDef<N>& def) {
   names_.push_back(def.name);
   shapes_.push_back(def.shape);
   materials_.push_back(def.material);
+  user_data_.push_back(def.user_data);
   contact::add_body(*contact_, bodies_, shapes_, int(bodies_.size() - 1));
   return BodyId{std::uint32_t(bodies_.size() - 1)};
 }
 
 template <int N>
 bool World<N>::is_awake(BodyId id) const {
-  return contact_->awake[id.index] != 0;
+  return contact_->awake[check(id)] != 0;
 }
 template <int N>
 void World<N>::wake(BodyId id) {
-  contact_->wake_island(int(id.index));
+  contact_->wake_island(int(check(id)));
 }
 
 template <int N>
 void World<N>::move_kinematic(BodyId id, const Vec<N>& position, const Rotor<N>& rotor, double h) {
-  Body<N>& b = bodies_[id.index];
+  Body<N>& b = bodies_[check(id)];
   if (b.type != BodyType::Kinematic) throw Error("move_kinematic: body '" + names_[id.index] + "' is not kinematic");
   if (!(h > 0.0) || !position.allFinite() || !rotor.all_finite()) throw Error("move_kinematic: invalid target");
   const Rotor<N> target = repair(rotor);
   // R' = exp(-h w / 2) R  =>  w = -2 log(R' ~R) / h; the centre follows the body frame.
   b.angular_velocity = log<N>(target * reverse(b.rotor)) * (-2.0 / h);
   b.velocity = (position + rotate(target, b.local_center) - b.center) / h;
+}
+
+template <int N>
+std::uint32_t World<N>::check(BodyId id) const {
+  if (id.index >= bodies_.size())
+    throw Error("body id " + std::to_string(id.index) + " is not a body of this world (it has " +
+                std::to_string(bodies_.size()) + ")");
+  return id.index;
+}
+
+template <int N>
+void World<N>::set_gravity(const Vec<N>& g) {
+  if (!g.allFinite()) throw Error("set_gravity: gravity must be finite");
+  if (g == settings_.gravity) return;
+  settings_.gravity = g;
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (bodies_[i].is_dynamic() && !contact_->awake[i]) contact_->wake(int(i));
+}
+
+template <int N>
+std::uint32_t World<N>::check(GrabId id) const {
+  const auto& grabs = contact_->grabs;
+  if (id.index >= grabs.size() || !grabs[id.index].live || grabs[id.index].generation != id.generation)
+    throw Error("grab id " + std::to_string(id.index) + "/" + std::to_string(id.generation) +
+                " is not a live grab of this world");
+  return id.index;
+}
+
+namespace {
+template <int N>
+void check_grab_target(const Vec<N>& target, const Vec<N>& velocity) {
+  if (!target.allFinite() || !velocity.allFinite()) throw Error("grab: target and its velocity must be finite");
+}
+}  // namespace
+
+template <int N>
+GrabId World<N>::add_grab(const GrabDef<N>& def) {
+  const Body<N>& b = bodies_[check(def.body)];
+  if (!b.is_dynamic()) throw Error("add_grab: body '" + names_[def.body.index] + "' is not dynamic");
+  if (!def.local_point.allFinite()) throw Error("add_grab: the grab point must be finite");
+  check_grab_target(def.target, def.target_velocity);
+  if (!(def.frequency > 0.0) || !std::isfinite(def.frequency)) throw Error("add_grab: frequency must be > 0 (Hz)");
+  if (!(def.damping_ratio >= 0.0) || !std::isfinite(def.damping_ratio))
+    throw Error("add_grab: damping_ratio must be finite and >= 0");
+  if (!(def.max_acceleration > 0.0) || !std::isfinite(def.max_acceleration))
+    throw Error("add_grab: max_acceleration must be finite and > 0 (m/s^2)");
+  auto& grabs = contact_->grabs;
+  std::size_t slot = 0;
+  while (slot < grabs.size() && grabs[slot].live) ++slot;  // lowest free slot: a fixed, replayable order
+  if (slot == grabs.size()) grabs.emplace_back();
+  contact::GrabConstraint<N>& g = grabs[slot];
+  const std::uint32_t generation = g.generation + 1;
+  g = contact::GrabConstraint<N>{};
+  g.def = def;
+  g.generation = generation;
+  g.live = true;
+  contact_->wake_island(int(def.body.index));
+  return GrabId{std::uint32_t(slot), generation};
+}
+
+template <int N>
+void World<N>::set_grab_target(GrabId id, const Vec<N>& target, const Vec<N>& velocity) {
+  contact::GrabConstraint<N>& g = contact_->grabs[check(id)];
+  check_grab_target(target, velocity);
+  g.def.target = target;
+  g.def.target_velocity = velocity;
+  contact_->wake_island(int(g.def.body.index));
+}
+
+template <int N>
+void World<N>::remove_grab(GrabId id) {
+  contact::GrabConstraint<N>& g = contact_->grabs[check(id)];
+  g.live = false;
+  g.active = false;
+  g.impulse.setZero();
+}
+
+template <int N>
+bool World<N>::has_grab(GrabId id) const {
+  const auto& grabs = contact_->grabs;
+  return id.index < grabs.size() && grabs[id.index].live && grabs[id.index].generation == id.generation;
+}
+
+template <int N>
+const GrabDef<N>& World<N>::grab(GrabId id) const {
+  return contact_->grabs[check(id)].def;
+}
+
+template <int N>
+Vec<N> World<N>::grab_point(GrabId id) const {
+  const GrabDef<N>& d = contact_->grabs[check(id)].def;
+  const Body<N>& b = bodies_[d.body.index];
+  return b.center + rotate(b.rotor, Vec<N>(d.local_point - b.local_center));
 }
 
 template <int N>
@@ -200,11 +296,15 @@ std::vector<ContactInfo<N>> World<N>::contacts() const {
 
 template <int N>
 void World<N>::apply_force(BodyId id, const Vec<N>& f) {
+  check(id);
+  if (!(f.allFinite())) throw Error("apply_force: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   bodies_[id.index].force += f;
 }
 template <int N>
 void World<N>::apply_force_at(BodyId id, const Vec<N>& f, const Vec<N>& p) {
+  check(id);
+  if (!(f.allFinite() && p.allFinite())) throw Error("apply_force_at: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   b.force += f;
@@ -212,11 +312,15 @@ void World<N>::apply_force_at(BodyId id, const Vec<N>& f, const Vec<N>& p) {
 }
 template <int N>
 void World<N>::apply_torque(BodyId id, const Bivector<N>& t) {
+  check(id);
+  if (!(t.all_finite())) throw Error("apply_torque: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   bodies_[id.index].torque += t;
 }
 template <int N>
 void World<N>::apply_impulse_at(BodyId id, const Vec<N>& j, const Vec<N>& p) {
+  check(id);
+  if (!(j.allFinite() && p.allFinite())) throw Error("apply_impulse_at: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   if (!b.is_dynamic()) return;
@@ -225,6 +329,8 @@ void World<N>::apply_impulse_at(BodyId id, const Vec<N>& j, const Vec<N>& p) {
 }
 template <int N>
 void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
+  check(id);
+  if (!(j.all_finite())) throw Error("apply_angular_impulse: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   if (!b.is_dynamic()) return;
@@ -242,7 +348,10 @@ void World<N>::step(double h) {
   report_contact_events();
   clear_forces();
   ++steps_;
-  time_ = double(steps_) * h;
+  // Neumaier's compensated sum: 600 steps of 1/120 s come to 5 s exactly, not 4.99999999999998.
+  const double t = time_ + h;
+  time_error_ += std::abs(time_) >= h ? (time_ - t) + h : (h - t) + time_;
+  time_ = t;
 }
 
 template <int N>

@@ -39,6 +39,7 @@ struct BodyDef {
   // thousand equal boxes hold one shape. A half-space is allowed on static bodies only.
   std::shared_ptr<const Shape<N>> shape;
   Material material;
+  std::uint64_t user_data = 0;  // the application's own tag (World::user_data)
 };
 
 // Hot state first (read and written every step), mass data after.

@@ -11,17 +11,20 @@
 //   update_islands        islands of touching bodies; still islands fall asleep
 //   report_contact_events pairs that began or stopped touching
 //   clear_forces
-// Input is applied only between steps, through the apply_* calls (which wake the body). Bodies are
+// Input is applied only between steps, through the apply_* calls, grabs and set_gravity (which wake the
+// bodies they move). Bodies are
 // stored in creation order and every loop runs in that order, so the same inputs give bit-identical
 // states.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "wedge/body.hpp"
 #include "wedge/contact.hpp"
+#include "wedge/grab.hpp"
 
 namespace wedge {
 
@@ -44,6 +47,24 @@ struct WorldSettings {
   ContactSettings contact;          // collision and contact processing, sleeping
 };
 
+// A body found by World::query_point: the one containing the point, else the nearest.
+template <int N>
+struct BodyPointHit {
+  BodyId body;
+  bool inside = false;             // the point lies in the body (boundary included)
+  double distance = 0.0;           // m, 0 when inside
+  Vec<N> closest = Vec<N>::Zero();  // m, world: the body's point nearest to the query point
+};
+
+// The first body a ray meets (World::ray_cast).
+template <int N>
+struct RayHit {
+  BodyId body;
+  double distance = 0.0;            // m along the (unit) direction; 0 if the origin is inside the body
+  Vec<N> point = Vec<N>::Zero();    // m, world
+  Vec<N> normal = Vec<N>::Zero();   // unit, the body's outward normal there (-direction from inside)
+};
+
 namespace contact {
 template <int N>
 struct ContactState;
@@ -61,14 +82,23 @@ class World {
 
   BodyId add_body(const BodyDef<N>& def);
   int body_count() const { return int(bodies_.size()); }
-  const Body<N>& body(BodyId id) const { return bodies_[id.index]; }
-  Body<N>& body(BodyId id) { return bodies_[id.index]; }
+  // Every call taking a BodyId checks it and throws wedge::Error for an id this world never gave out.
+  const Body<N>& body(BodyId id) const { return bodies_[check(id)]; }
+  Body<N>& body(BodyId id) { return bodies_[check(id)]; }
   const std::vector<Body<N>>& bodies() const { return bodies_; }
-  const std::string& name(BodyId id) const { return names_[id.index]; }
+  const std::string& name(BodyId id) const { return names_[check(id)]; }
   const WorldSettings<N>& settings() const { return settings_; }
   WorldSettings<N>& settings() { return settings_; }
-  const Shape<N>* shape(BodyId id) const { return shapes_[id.index].get(); }
-  const Material& material(BodyId id) const { return materials_[id.index]; }
+  const Shape<N>* shape(BodyId id) const { return shapes_[check(id)].get(); }
+  const Material& material(BodyId id) const { return materials_[check(id)]; }
+  // The application's own tag for a body (an index into its tables, a pointer's bits); never read here.
+  std::uint64_t user_data(BodyId id) const { return user_data_[check(id)]; }
+  void set_user_data(BodyId id, std::uint64_t data) { user_data_[check(id)] = data; }
+
+  // Gravity between steps (m/s^2): throws wedge::Error for a non-finite vector; a change wakes every
+  // sleeping body, since bodies at rest under the old gravity need not be at rest under the new one.
+  const Vec<N>& gravity() const { return settings_.gravity; }
+  void set_gravity(const Vec<N>& g);
 
   // Sleeping: a body at rest with its island is not simulated until something touches it or input is
   // applied to it. Changing a body's state through body(id) does not wake it; call wake(id).
@@ -87,9 +117,28 @@ class World {
   void apply_impulse_at(BodyId id, const Vec<N>& impulse, const Vec<N>& point);  // N s
   void apply_angular_impulse(BodyId id, const Bivector<N>& impulse);              // N m s
 
+  // Grabs (wedge/grab.hpp): a soft constraint pulling a point of a dynamic body toward a target, solved
+  // with the contacts. add_grab throws wedge::Error for a body that is not dynamic or invalid settings;
+  // the other calls throw for an id that was removed. Setting a target wakes the body.
+  GrabId add_grab(const GrabDef<N>& def);
+  void set_grab_target(GrabId id, const Vec<N>& target, const Vec<N>& target_velocity);
+  void remove_grab(GrabId id);
+  bool has_grab(GrabId id) const;
+  const GrabDef<N>& grab(GrabId id) const;
+  Vec<N> grab_point(GrabId id) const;  // m, world: where the grabbed point of the body is now
+
+  // Queries on the state (shapes as placed now; candidates culled by the broad phase's boxes of the
+  // last step, which hold every body that has not been moved by hand since).
+  // The body containing x (the lowest index if several), else the nearest within max_distance (ties:
+  // the lower index); static bodies only if include_static.
+  std::optional<BodyPointHit<N>> query_point(const Vec<N>& x, double max_distance, bool include_static = true) const;
+  // The first body along origin + t direction, 0 <= t <= max_distance (direction need not be unit).
+  std::optional<RayHit<N>> ray_cast(const Vec<N>& origin, const Vec<N>& direction, double max_distance,
+                                    bool include_static = true) const;
+
   void step(double h);
   std::int64_t step_count() const { return steps_; }
-  double time() const { return time_; }
+  double time() const { return time_ + time_error_; }  // s: the sum of the steps taken
 
   // Diagnostics over dynamic bodies (static and kinematic ones carry no momentum).
   double kinetic_energy() const;
@@ -114,15 +163,18 @@ class World {
   void update_islands(double h);
   void report_contact_events();
   void clear_forces();
+  std::uint32_t check(BodyId id) const;
+  std::uint32_t check(GrabId id) const;
 
   WorldSettings<N> settings_;
   std::vector<Body<N>> bodies_;
   std::vector<std::string> names_;  // cold data, apart from the hot state
   std::vector<std::shared_ptr<const Shape<N>>> shapes_;
   std::vector<Material> materials_;
+  std::vector<std::uint64_t> user_data_;
   std::unique_ptr<contact::ContactState<N>> contact_;
   std::int64_t steps_ = 0;
-  double time_ = 0.0;
+  double time_ = 0.0, time_error_ = 0.0;  // (compensated summation)
 };
 
 // One implicit step of the torque-free Euler equation I dw/dt - w x I w = 0 in the body frame, solved

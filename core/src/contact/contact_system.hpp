@@ -6,6 +6,7 @@
 //   process_contacts   solver.cpp     restitution 0, shock propagation, split-impulse position correction
 //   update_islands     islands.cpp    islands of touching bodies, sleeping, the contact graph's levels
 //   report_events      pairs.cpp      began/stopped touching, sorted by pair
+// Grabs (grab.cpp) are solved inside process_contacts, before the contacts in every pass.
 // Everything runs in creation order of the bodies and sorted order of the pairs, so a step is a
 // function of the state alone (bit-identical on every run).
 #pragma once
@@ -19,6 +20,7 @@
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/broadphase.hpp"
 #include "wedge/contact.hpp"
+#include "wedge/grab.hpp"
 
 namespace wedge::contact {
 
@@ -122,6 +124,21 @@ struct Constraint {
   double shock_change = 0.0;     // m/s, the largest normal velocity change of that visit
 };
 
+// A grab slot: the definition, and what the current step derived from it (see wedge/grab.hpp).
+template <int N>
+struct GrabConstraint {
+  GrabDef<N> def;
+  std::uint32_t generation = 0;
+  bool live = false;
+  bool active = false;                       // live, on an awake dynamic body, in this step
+  Vec<N> r = Vec<N>::Zero();                 // m, grab point from the centre of mass (world)
+  Eigen::Matrix<double, kBiv<N>, N> w = Eigen::Matrix<double, kBiv<N>, N>::Zero();  // I'^-1 [r]_*
+  Mat<N> mass = Mat<N>::Zero();              // K^-1
+  Vec<N> bias = Vec<N>::Zero();              // m/s, bias_rate C
+  double mass_scale = 0.0, impulse_scale = 0.0, max_impulse = 0.0;
+  Vec<N> impulse = Vec<N>::Zero();           // N s, accumulated (kept between steps: warm start)
+};
+
 // Everything the contact stages keep between and during steps. Plain data: the stages are free
 // functions, one file per group (see the top of this file).
 template <int N>
@@ -145,6 +162,10 @@ struct ContactState {
   std::vector<int> island;         // label (smallest body index) of the island the body was last in, or -1
   std::vector<int> union_parent, bfs_queue, adjacency_start, adjacency;
   std::vector<double> group_b, group_c;  // collision-stage energy terms per group
+  std::vector<char> group_driven;        // per group root: holds a grabbed body (no energy limit)
+
+  std::vector<GrabConstraint<N>> grabs;  // slots, solved in slot order
+  std::vector<char> driven;               // per body: held by an active grab this step
 
   std::vector<ContactBeginEvent<N>> begin_events;
   std::vector<ContactEndEvent> end_events, ended;  // ended: pairs dropped by the broad phase this step
@@ -181,6 +202,14 @@ void process_collisions(ContactState<N>& state, std::vector<Body<N>>& bodies, co
 template <int N>
 void process_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
                       double h);
+// grab.cpp: derive the step's grab data (and `driven`), apply last step's impulses, one pass. The pass
+// returns the largest velocity change it made (m/s), for the solver's early exit.
+template <int N>
+bool prepare_grabs(ContactState<N>& state, const std::vector<Body<N>>& bodies, double h);
+template <int N>
+void warm_start_grabs(ContactState<N>& state);
+template <int N>
+double solve_grabs(ContactState<N>& state);
 // islands.cpp
 template <int N>
 void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);

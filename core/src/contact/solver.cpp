@@ -248,6 +248,11 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
       const int ra = root(c.a), rb = root(c.b);
       if (ra != rb) s.union_parent[std::max(ra, rb)] = std::min(ra, rb);
     }
+  // A group with a grabbed body has an outside source of energy (the hand): it may gain energy.
+  s.group_driven.assign(n, 0);
+  if (!restitutive_only)
+    for (int i = 0; i < n && i < int(s.driven.size()); ++i)
+      if (s.driven[i]) s.group_driven[root(i)] = 1;
   // Per group root: B = sum of p0 . dv terms, C = half the energy of the changes; E(alpha) = E0 + alpha B
   // + alpha^2 C, so E(1) > E0 means B + C > 0.
   std::vector<double>& lin = s.group_b;
@@ -268,6 +273,7 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
   for (int i = 0; i < n; ++i) {
     if (!moves(i)) continue;
     const int r = root(i);
+    if (s.group_driven[r]) continue;
     const double b = lin[r], c = quad[r];
     if (!(b + c > 1e-12 * std::abs(b)) || !(c > 0.0)) continue;
     const double alpha = std::clamp(-b / c, 0.0, 1.0);
@@ -338,12 +344,18 @@ void keep_for_warm_start(ContactState<N>& s) {
 
 template <int N>
 void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
-  if (s.constraints.empty()) return;
+  const bool grabs = prepare_grabs(s, bodies, h);
+  if (s.constraints.empty() && !grabs) return;
   load_velocities(s, bodies);
   snapshot_velocities(s);
-  if (settings.warm_start) warm_start(s);
-  for (int it = 0; it < settings.contact_iterations; ++it) {
-    double largest = 0.0;  // m/s
+  if (settings.warm_start) {
+    warm_start_grabs(s);
+    warm_start(s);
+  }
+  // Grabs first, contacts last in every pass: the contacts have the last word, so a held body is stopped
+  // by what it hits rather than pulled through it.
+  for (int it = 0; it < std::max(settings.contact_iterations, grabs ? 1 : 0); ++it) {
+    double largest = grabs ? solve_grabs(s) : 0.0;  // m/s
     for (const Constraint<N>& c : s.constraints) {
       SolverBody<N>& a = s.solver_bodies[c.a];
       SolverBody<N>& b = s.solver_bodies[c.b];
