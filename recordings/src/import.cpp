@@ -1,0 +1,154 @@
+// Importers: other devices' recordings into the recording format (recording.hpp). Values are kept as
+// recorded; only the clock is rebased to start at 0 and near-unit quaternions are normalised.
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "unit_quaternion.hpp"
+#include "wedge/error.hpp"
+#include "wedge/recordings/coremotion_csv.hpp"
+#include "wedge/recordings/recording.hpp"
+
+namespace wedge::recordings {
+namespace {
+
+// The fields of a CSV line; a CRLF line ending is not part of the last field.
+std::vector<std::string> split(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  for (std::size_t comma; (comma = line.find(',', begin)) != std::string::npos; begin = comma + 1)
+    out.push_back(line.substr(begin, comma - begin));
+  out.push_back(line.substr(begin));
+  return out;
+}
+
+// The questset columns (signetlabdei/questset, Oculus PC SDK names), in the order read below.
+constexpr std::array<const char*, 27> kQuestColumns = {
+    "TouchButtons",          "LeftIndexTrigger",      "RightIndexTrigger",     "LeftHandTrigger",
+    "RightHandTrigger",      "LeftTouchPosX",         "LeftTouchPosY",         "LeftTouchPosZ",
+    "LeftTouchOrientationW", "LeftTouchOrientationX", "LeftTouchOrientationY", "LeftTouchOrientationZ",
+    "RightTouchPosX",        "RightTouchPosY",        "RightTouchPosZ",        "RightTouchOrientationW",
+    "RightTouchOrientationX", "RightTouchOrientationY", "RightTouchOrientationZ", "HeadPosX",
+    "HeadPosY",              "HeadPosZ",              "HeadOrientationW",      "HeadOrientationX",
+    "HeadOrientationY",      "HeadOrientationZ",      "time"};
+enum QuestColumn { kButtons, kLeftIndex, kRightIndex, kLeftHand, kRightHand, kLeftPose = 5, kRightPose = 12,
+                   kHeadPose = 19, kTime = 26 };
+
+}  // namespace
+
+Recording import_questset_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open file");
+  auto fail = [&](int line, const std::string& problem) {
+    throw Error(path + ":" + std::to_string(line) + ": " + problem);
+  };
+  std::string line;
+  if (!std::getline(in, line) || line.empty() || line == "\r")
+    fail(1, "empty file (expected a header row naming the questset columns)");
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark from a spreadsheet
+  const std::vector<std::string> header = split(line);
+  std::array<std::size_t, kQuestColumns.size()> column{};
+  for (std::size_t k = 0; k < kQuestColumns.size(); ++k) {
+    std::size_t c = 0;
+    while (c < header.size() && header[c] != kQuestColumns[k]) ++c;
+    if (c == header.size()) fail(1, std::string("no column '") + kQuestColumns[k] + "' in the header");
+    column[k] = c;
+  }
+  // Every column must be one of the 27, once: an unknown one may be a renamed column whose data would be lost.
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    const std::size_t k = std::find(kQuestColumns.begin(), kQuestColumns.end(), header[c]) - kQuestColumns.begin();
+    if (k == kQuestColumns.size()) fail(1, "unknown column '" + header[c] + "' (questset has 27 known columns)");
+    if (column[k] != c) fail(1, "column '" + header[c] + "' appears twice");
+  }
+
+  Recording r;
+  r.source = "quest2-touch";
+  double t0 = 0.0, last_time = 0.0;
+  std::string last_time_text;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty() || line == "\r") continue;
+    const std::vector<std::string> fields = split(line);
+    if (fields.size() != header.size())
+      fail(number, std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
+    std::array<double, kQuestColumns.size()> v{};
+    for (std::size_t k = 0; k < kQuestColumns.size(); ++k) {
+      const std::string& text = fields[column[k]];
+      char* end = nullptr;
+      errno = 0;
+      v[k] = std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v[k]))
+        fail(number, std::string(kQuestColumns[k]) + " is not a finite number ('" + text + "')");
+    }
+    if (v[kButtons] < 0 || v[kButtons] > 4294967295.0 || v[kButtons] != std::floor(v[kButtons]))
+      fail(number, "TouchButtons is not a button bit mask ('" + fields[column[kButtons]] + "')");
+    for (const int k : {kLeftIndex, kRightIndex, kLeftHand, kRightHand})
+      if (!(v[k] >= 0.0 && v[k] <= 1.0))
+        fail(number, std::string(kQuestColumns[k]) + " = " + fields[column[k]] + " is outside [0, 1]");
+    if (r.heads.empty()) {
+      t0 = v[kTime];
+    } else if (v[kTime] < last_time) {
+      fail(number, "time goes backwards (" + fields[column[kTime]] + " after " + last_time_text + ")");
+    }
+    last_time = v[kTime];
+    last_time_text = fields[column[kTime]];
+    const double t = v[kTime] - t0;  // rounding is monotone: a non-decreasing clock stays non-decreasing
+
+    auto pose = [&](int first, const char* name) {
+      Pose p;
+      p.position = {v[first], v[first + 1], v[first + 2]};
+      p.orientation = Eigen::Quaterniond(v[first + 3], v[first + 4], v[first + 5], v[first + 6]);
+      double norm = 0.0;
+      if (!accept_unit_quaternion(p.orientation, norm))
+        fail(number, std::string(name) + "Orientation{W,X,Y,Z} is not a unit quaternion (norm " +
+                         std::to_string(norm) + ", more than 1e-3 from 1)");
+      return p;
+    };
+    // TouchButtons is one mask for both controllers: A and B are on the right one, X and Y on the left.
+    const auto buttons = std::uint32_t(v[kButtons]);
+    HandSample left;
+    left.t = t;
+    left.hand = Hand::Left;
+    left.pose = pose(kLeftPose, "LeftTouch");
+    left.squeeze = v[kLeftHand];
+    left.trigger = v[kLeftIndex];
+    left.buttons = buttons & (kButtonX | kButtonY);
+    HandSample right;
+    right.t = t;
+    right.hand = Hand::Right;
+    right.pose = pose(kRightPose, "RightTouch");
+    right.squeeze = v[kRightHand];
+    right.trigger = v[kRightIndex];
+    right.buttons = buttons & (kButtonA | kButtonB);
+    const HeadSample head{t, pose(kHeadPose, "Head")};
+    r.hands.push_back(left);
+    r.hands.push_back(right);
+    r.heads.push_back(head);
+  }
+  if (in.bad()) throw Error(path + ": read failed");
+  if (r.heads.empty()) throw Error(path + ": no samples after the header");
+  return r;
+}
+
+Recording import_coremotion_csv(const std::string& path) {
+  const std::vector<CoreMotionSample> samples = read_coremotion_csv(path);  // not empty, time non-decreasing
+  Recording r;
+  r.source = "coremotion";
+  r.motion.reserve(samples.size());
+  for (const CoreMotionSample& s : samples) {
+    MotionSample m;
+    m.t = s.time - samples.front().time;
+    m.acceleration = s.user_acceleration + s.gravity;  // the raw accelerometer, as CoreMotion defines it
+    m.has_rotation_rate = true;
+    m.rotation_rate = s.rotation_rate;
+    r.motion.push_back(m);
+  }
+  return r;
+}
+
+}  // namespace wedge::recordings
