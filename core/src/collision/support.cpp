@@ -8,23 +8,27 @@
 namespace wedge::collision {
 namespace {
 
+// One factor's extreme point along d, written into its own axes of p.
+template <int N>
+void factor_support(const ProductFactor& f, const Vec<N>& d, Vec<N>& p) {
+  if (f.kind == ProductFactor::Kind::Interval) {
+    p[f.axes[0]] = d[f.axes[0]] < 0.0 ? -f.size : f.size;
+    return;
+  }
+  double len2 = 0.0;
+  for (int a : f.axes) len2 += d[a] * d[a];
+  if (len2 > 0.0) {
+    const double s = f.size / std::sqrt(len2);
+    for (int a : f.axes) p[a] = d[a] * s;
+  } else {
+    p[f.axes[0]] = f.size;
+  }
+}
+
 template <int N>
 Vec<N> product_support(const std::vector<ProductFactor>& factors, const Vec<N>& d) {
   Vec<N> p = Vec<N>::Zero();
-  for (const ProductFactor& f : factors) {
-    if (f.kind == ProductFactor::Kind::Interval) {
-      p[f.axes[0]] = d[f.axes[0]] < 0.0 ? -f.size : f.size;
-      continue;
-    }
-    double len2 = 0.0;
-    for (int a : f.axes) len2 += d[a] * d[a];
-    if (len2 > 0.0) {
-      const double s = f.size / std::sqrt(len2);
-      for (int a : f.axes) p[a] = d[a] * s;
-    } else {
-      p[f.axes[0]] = f.size;
-    }
-  }
+  for (const ProductFactor& f : factors) factor_support<N>(f, d, p);
   return p;
 }
 
@@ -112,9 +116,9 @@ void local_support_set(const Shape<N>& shape, const Vec<N>& d, double tolerance,
     const bool flat = std::sqrt(len2) * f.size < tolerance;
     choices.clear();
     if (!flat) {
-      Vec<N> du = Vec<N>::Zero();
-      for (int a : f.axes) du[a] = u[a];
-      choices.push_back(product_support<N>({f}, du));
+      Vec<N> p = Vec<N>::Zero();  // (no vector of one factor: that allocated on every call)
+      factor_support<N>(f, u, p);
+      choices.push_back(p);
     } else if (f.kind == ProductFactor::Kind::Interval) {
       choices.push_back(Vec<N>::Unit(f.axes[0]) * -f.size);
       choices.push_back(Vec<N>::Unit(f.axes[0]) * f.size);

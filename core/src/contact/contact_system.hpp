@@ -155,6 +155,7 @@ struct ContactState {
   std::vector<Constraint<N>> constraints;    // in pair order
   std::vector<PointConstraint<N>> points;
   std::vector<int> shock_order;  // constraints sorted by level (stable)
+  std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
 
   // Islands and sleep, per body.
   std::vector<char> awake;

@@ -82,8 +82,16 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
     c.level = std::max(s.solver_bodies[c.a].level, s.solver_bodies[c.b].level);
     if (c.level != kUnreached) s.shock_order.push_back(int(ci));
   }
-  std::stable_sort(s.shock_order.begin(), s.shock_order.end(),
-                   [&s](int x, int y) { return s.constraints[x].level < s.constraints[y].level; });
+  // Stable counting sort by level, which is >= -1 (std::stable_sort would allocate a buffer every step).
+  int top = -1;
+  for (int ci : s.shock_order) top = std::max(top, s.constraints[ci].level);
+  auto bin = [&s](int ci) { return std::size_t(s.constraints[ci].level + 1); };
+  s.level_start.assign(std::size_t(top + 3), 0);
+  for (int ci : s.shock_order) ++s.level_start[bin(ci) + 1];
+  for (std::size_t l = 1; l < s.level_start.size(); ++l) s.level_start[l] += s.level_start[l - 1];
+  s.shock_scratch.resize(s.shock_order.size());
+  for (int ci : s.shock_order) s.shock_scratch[std::size_t(s.level_start[bin(ci)]++)] = ci;
+  s.shock_order.swap(s.shock_scratch);
 }
 
 // Islands: dynamic bodies joined by contact points. A body is still while its centre and the rim of its
