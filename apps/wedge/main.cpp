@@ -1,5 +1,5 @@
 // wedge: the command-line front end of the engine. Dispatches to one verb per file (inertia.cpp,
-// simulate.cpp, collide.cpp, render.cpp, slice.cpp); exit codes in cli_error.hpp.
+// simulate.cpp, collide.cpp, render.cpp, slice.cpp, import.cpp, replay.cpp); exit codes in cli_error.hpp.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <exception>
@@ -27,15 +27,19 @@ int main(int argc, char** argv) {
   CollideOptions collide;
   RenderOptions render;
   SliceOptions slice;
+  ImportOptions import_options;
+  ReplayOptions replay;
   CLI::App* inertia_cmd = add_inertia_verb(app, inertia);
   CLI::App* simulate_cmd = add_simulate_verb(app, simulate);
   CLI::App* collide_cmd = add_collide_verb(app, collide);
   CLI::App* render_cmd = add_render_verb(app, render);
   CLI::App* slice_cmd = add_slice_verb(app, slice);
+  CLI::App* import_cmd = add_import_verb(app, import_options);
+  CLI::App* replay_cmd = add_replay_verb(app, replay);
 
   // The verb comes first. Name an unknown one (CLI11 would only say that a subcommand is required), and
   // take `wedge help [VERB]` as the --help it means.
-  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice"};
+  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice", "import", "replay"};
   std::vector<std::string> args(argv + 1, argv + argc);
   if (!args.empty() && args[0] == "help") {
     if (args.size() == 1) {
@@ -46,8 +50,8 @@ int main(int argc, char** argv) {
   }
   if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
       std::find(verbs.begin(), verbs.end(), args[0]) == verbs.end()) {
-    std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render and "
-              << "slice)\nRun 'wedge --help' for usage.\n";
+    std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render, "
+              << "slice, import and replay)\nRun 'wedge --help' for usage.\n";
     return kExitBadInput;
   }
 
@@ -72,6 +76,8 @@ int main(int argc, char** argv) {
     if (collide_cmd->parsed()) return run_collide(collide);
     if (render_cmd->parsed()) return run_render(render);
     if (slice_cmd->parsed()) return run_slice(slice);
+    if (import_cmd->parsed()) return run_import(import_options);
+    if (replay_cmd->parsed()) return run_replay(replay);
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
   } catch (const Interrupted& e) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -55,5 +56,25 @@ struct SliceOptions {
 };
 CLI::App* add_slice_verb(CLI::App& app, SliceOptions& options);
 int run_slice(const SliceOptions& options);
+
+// wedge import questset|coremotion SOURCE.csv --out RECORDING.jsonl
+struct ImportOptions {
+  std::string format;
+  std::string source;
+  std::string out;
+};
+CLI::App* add_import_verb(CLI::App& app, ImportOptions& options);
+int run_import(const ImportOptions& options);
+
+// wedge replay SCENE.json RECORDING... [--out FILE] [--every K] [--events FILE] [--hash] [--until T] [--dt H]
+struct ReplayOptions {
+  std::string scene;
+  std::vector<std::string> recordings;
+  std::string out, events;
+  std::string every, until, dt;
+  bool hash = false;
+};
+CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& options);
+int run_replay(const ReplayOptions& options);
 
 }  // namespace wedge::cli

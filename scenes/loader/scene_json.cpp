@@ -45,6 +45,31 @@ std::array<double, 3> read_unit_rgb(const Node& n) {
   return {v[0], v[1], v[2]};
 }
 
+template <int N>
+SceneInteraction<N> read_interaction(const Node& node) {
+  ObjectReader obj(node);
+  SceneInteraction<N> in;
+  if (auto n = obj.optional("origin")) in.origin = n->vec<N>();
+  if (auto n = obj.optional("scale")) {
+    in.scale = n->number();
+    if (!(in.scale > 0.0)) n->fail("must be > 0 (got " + n->json().dump() + ")");
+  }
+  if (auto n = obj.optional("grab_radius")) {
+    in.grab_radius = n->number();
+    if (!(in.grab_radius >= 0.0)) n->fail("must be >= 0 m (got " + n->json().dump() + ")");
+  }
+  if (auto n = obj.optional("gravity_tilt_on")) {
+    in.gravity_tilt_on = n->boolean();
+    if (in.gravity_tilt_on && N < 4) n->fail("the tilt turns gravity toward w, which a " + std::to_string(N) + "D scene lacks");
+  }
+  if (auto n = obj.optional("gravity_tilt")) {
+    in.gravity_tilt = n->number();
+    if (!(in.gravity_tilt >= 0.0 && in.gravity_tilt <= 90.0)) n->fail("must be in [0, 90] degrees (got " + n->json().dump() + ")");
+  }
+  obj.finish();
+  return in;
+}
+
 SceneView read_view(const Node& node) {
   ObjectReader obj(node);
   SceneView view;
@@ -225,6 +250,7 @@ Scene<N> load_scene(const Json& doc, const std::string& file) {
     }
     if (auto n = obj.optional("contact")) scene.settings.contact = read_contact_settings(*n);
     if (auto n = obj.optional("view")) scene.view = read_view(*n);
+    if (auto n = obj.optional("interaction")) scene.interaction = read_interaction<N>(*n);
     const Node bodies = obj.required("bodies");
     obj.finish();
 

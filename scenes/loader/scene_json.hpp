@@ -45,12 +45,24 @@ struct SceneView {
   std::optional<double> fov_degrees;                 // vertical field of view, in (0, 180)
 };
 
+// How hands and a phone reach the scene ("interaction", docs/input.md): where the tracking origin is
+// in the world (its hidden coordinates are the slice the hands live in), the scale, and the gravity tilt.
+template <int N>
+struct SceneInteraction {
+  Vec<N> origin = Vec<N>::Zero();  // m, world: the tracking origin; the default puts it at the origin (slice w = 0)
+  double scale = 1.0;              // world metres per tracking metre, > 0
+  double grab_radius = 0.05;       // m, >= 0: grab the nearest body this close when the hand is in none
+  bool gravity_tilt_on = false;    // tilt gravity toward w from the start (4D and up)
+  double gravity_tilt = 15.0;      // degrees, [0, 90]
+};
+
 template <int N>
 struct Scene {
   WorldSettings<N> settings;
   double timestep = kDefaultTimestep;  // s
   std::vector<SceneBody<N>> bodies;
   SceneView view;
+  SceneInteraction<N> interaction;
 
   // A world holding every body, in file order (throws Failure naming the file and body on error).
   World<N> make_world(const std::string& file) const;

@@ -1,0 +1,224 @@
+// wedge replay SCENE.json RECORDING... [--out STATES.jsonl] [--every K] [--events EVENTS.jsonl] [--hash]
+//                                       [--until T] [--dt H]
+//
+// Replays recorded device streams (docs/recording-format.md) into a scene through the input layer, at
+// the scene's fixed step: each step reads the input frame at its start time, applies it (grabs, torques,
+// gravity), steps, and turns the step's contact begin events into haptic pulses. The state lines are
+// simulate's plus `gravity` and `hands`; --events writes the grabs, releases and haptic pulses. A
+// replay is a pure function of (scene, recordings): the same files give the same state hash.
+#include <CLI/CLI.hpp>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "interrupt.hpp"
+#include "json_out.hpp"
+#include "scene_json.hpp"
+#include "state_json.hpp"
+#include "step_options.hpp"
+#include "verbs.hpp"
+#include "wedge/input/interaction.hpp"
+#include "wedge/input/recording_source.hpp"
+#include "wedge/recordings/recording.hpp"
+
+namespace wedge::cli {
+
+namespace {
+
+const char* hand_name(int hand) { return hand == 0 ? "left" : "right"; }
+
+template <int N>
+input::InteractionSettings<N> interaction_settings(const Scene<N>& scene) {
+  input::InteractionSettings<N> s;
+  s.tracking.origin = scene.interaction.origin;
+  s.tracking.scale = scene.interaction.scale;
+  s.grab_radius = scene.interaction.grab_radius;
+  s.gravity_tilt_on = scene.interaction.gravity_tilt_on;
+  s.gravity_tilt_degrees = scene.interaction.gravity_tilt;
+  return s;
+}
+
+// A recording that cannot mean anything in this scene is refused before anything runs.
+template <int N>
+void check_fit(const Scene<N>& scene, const input::RecordingSource& src, const std::vector<std::string>& files,
+               const std::string& scene_file) {
+  if (N < 4 && src.uses_mode4d()) {
+    const int hand = src.source_of_hand(1) >= 0 ? 1 : 0;
+    throw Failure(files[std::size_t(src.source_of_hand(hand))] + ": uses 4D rotation mode, but " + scene_file +
+                  " is a " + std::to_string(N) + "D scene (no w to turn toward)");
+  }
+  if (N < 4 && src.uses_tilt())
+    throw Failure(files[std::size_t(src.source_of_motion())] + ": turns on the gravity tilt toward w, but " +
+                  scene_file + " is a " + std::to_string(N) + "D scene");
+  if (src.has_motion() && scene.settings.gravity.squaredNorm() == 0.0)
+    throw Failure(files[std::size_t(src.source_of_motion())] + ": has accelerometer samples to tilt gravity, but " +
+                  scene_file + " has no gravity (set \"gravity\" in the scene)");
+  if (!src.has_hands() && !src.has_motion())
+    throw Failure(files.front() + ": holds no hand or accelerometer samples (nothing to replay)");
+}
+
+template <int N>
+int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>& dt, std::int64_t every,
+           const std::optional<double>& until) {
+  const std::string& file = o.scene;
+  const Scene<N> scene = load_scene<N>(doc, file);
+  const double h = dt ? *dt : scene.timestep;
+  World<N> world = scene.make_world(file);
+
+  std::vector<recordings::Recording> recs;
+  for (const std::string& r : o.recordings) {
+    try {
+      recs.push_back(recordings::read_recording(r));
+    } catch (const Error& e) {
+      throw Failure(e.what());  // (the message starts with the file and line)
+    }
+    for (const std::string& w : recs.back().warnings) std::cerr << "warning: " << w << "\n";
+  }
+  input::RecordingSource src = [&] {
+    try {
+      return input::RecordingSource(std::move(recs), o.recordings);
+    } catch (const Error& e) {
+      throw Failure(e.what());
+    }
+  }();
+  check_fit(scene, src, o.recordings, file);
+  input::Interaction<N> in = with_file_context(file, "interaction", [&] {
+    return input::Interaction<N>(world, interaction_settings(scene));
+  });
+
+  const double end = until ? *until : src.duration();
+  const std::int64_t steps = std::int64_t(std::ceil(end / h - 1e-9));
+  OutputSink out(o.out);
+  std::optional<OutputSink> events;
+  if (!o.events.empty()) events.emplace(o.events);
+  auto emit = [&] {
+    OutJson line = state_line(world);
+    line["gravity"] = to_json(world.gravity());
+    OutJson hands = OutJson::array();
+    for (int k = 0; k < input::kHandCount; ++k) {
+      OutJson jh;
+      jh["hand"] = hand_name(k);
+      jh["tracked"] = in.tracked(k);
+      jh["point"] = to_json(in.hand_point(k));
+      jh["holding"] = in.held(k) ? OutJson(world.name(*in.held(k))) : OutJson(nullptr);
+      hands.push_back(std::move(jh));
+    }
+    line["hands"] = std::move(hands);
+    check_finite_line(line, world, file);
+    out.write_line(line.dump());
+  };
+  std::int64_t grabs = 0, releases = 0, pulses = 0;
+  auto event_lines = [&] {
+    for (const input::InteractionEvent<N>& e : in.events()) {
+      const bool grab = e.kind == input::InteractionEvent<N>::Kind::Grab;
+      (grab ? grabs : releases)++;
+      if (!events) continue;
+      OutJson j;
+      j["type"] = grab ? "grab" : "release";
+      j["t"] = e.t;
+      j["step"] = e.step;
+      j["hand"] = hand_name(e.hand);
+      j["body"] = world.name(e.body);
+      if (grab) {
+        j["point"] = to_json(e.point);
+        j["local_point"] = to_json(e.local_point);
+      } else {
+        j["velocity"] = to_json(e.velocity);
+        j["angular_velocity"] = to_json(e.angular_velocity);
+      }
+      events->write_line(j.dump());
+    }
+  };
+  auto pulse_lines = [&] {
+    for (const input::HapticPulse<N>& p : in.pulses()) {
+      ++pulses;
+      if (!events) continue;
+      OutJson j;
+      j["type"] = "haptic";
+      j["t"] = p.t;
+      j["step"] = p.step;
+      j["hand"] = hand_name(p.hand);
+      j["amplitude"] = p.amplitude;
+      j["duration"] = p.duration;
+      j["frequency"] = p.frequency;
+      j["bodies"] = OutJson::array({world.name(p.held), world.name(p.other)});
+      j["point"] = to_json(p.point);
+      j["approach_speed"] = p.approach_speed;
+      events->write_line(j.dump());
+    }
+  };
+
+  emit();
+  for (std::int64_t k = 0; k < steps; ++k) {
+    const input::InputFrame& frame = src.frame_at(double(k) * h);
+    with_file_context(file, "", [&] { in.before_step(frame, h); });
+    event_lines();
+    checked_step(world, h, file);
+    in.after_step();
+    pulse_lines();
+    if ((k + 1) % every == 0) emit();
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016" PRIx64, world.state_hash());
+  if (o.hash) {
+    OutJson line;
+    line["state_hash"] = hex;
+    out.write_line(line.dump());
+  }
+  throw_if_interrupted();
+  if (events) events->commit();
+  out.commit();
+  if (!o.out.empty()) {
+    std::printf("replayed %.3f s (%lld steps) of %zu recording%s: %lld grab%s, %lld release%s, %lld haptic pulse%s; "
+                "wrote %lld states to %s%s%s%s%s\n",
+                double(steps) * h, (long long)steps, o.recordings.size(), o.recordings.size() == 1 ? "" : "s",
+                (long long)grabs, grabs == 1 ? "" : "s", (long long)releases, releases == 1 ? "" : "s",
+                (long long)pulses, pulses == 1 ? "" : "s", (long long)(steps / every + 1), o.out.c_str(),
+                o.events.empty() ? "" : " and events to ", o.events.c_str(), o.hash ? "; state hash " : "",
+                o.hash ? hex : "");
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "replay",
+      "Replay recorded controllers and accelerometers (docs/recording-format.md) into a scene through the input "
+      "layer, headless; write states as JSON Lines like simulate, plus gravity and the hands.");
+  cmd->add_option("scene", o.scene, "Scene file (JSON, docs/scene-format.md)")->required()->type_name("SCENE.json");
+  cmd->add_option("recordings", o.recordings, "Recordings (JSON Lines); several merge by time")
+      ->required()
+      ->type_name("RECORDING...");
+  cmd->add_option("--out,-o", o.out, "Write the states to FILE (atomically) instead of stdout")->type_name("FILE");
+  cmd->add_option("--every,-k", o.every, "Write every K-th step (>= 1; default 1); step 0 is always written")
+      ->type_name("K");
+  cmd->add_option("--events", o.events, "Write grabs, releases and haptic pulses to FILE (JSON Lines)")
+      ->type_name("FILE");
+  cmd->add_flag("--hash", o.hash, "After the last state, write {\"state_hash\": ...} (and print it with --out)");
+  cmd->add_option("--until", o.until, "Stop at T seconds (default: the end of the recordings)")->type_name("T");
+  cmd->add_option("--dt", o.dt, "Step size in seconds (default: the scene's \"timestep\", else 1/120)")
+      ->type_name("H");
+  cmd->footer(kExitCodesText);
+  return cmd;
+}
+
+int run_replay(const ReplayOptions& o) {
+  // Options first (so that every message names the scene), then the scene and the recordings.
+  const StepOptions run = parse_step_options(o.scene, "0", o.dt, o.every);
+  std::optional<double> until;
+  if (!o.until.empty()) {
+    double t = 0.0;
+    if (!parse_double(o.until, t) || !(t >= 0.0) || !std::isfinite(t))
+      throw Failure(o.scene + ": --until must be a time in seconds >= 0 (got '" + o.until + "')");
+    until = t;
+  }
+  if (!o.out.empty() && o.out == o.events) throw Failure(o.scene + ": --out and --events must be different files");
+  const Json doc = read_json_file(o.scene);
+  const int n = read_dim(doc, o.scene);
+  return with_dim(n, [&](auto dim) { return replay<decltype(dim)::value>(doc, o, run.dt, run.every, until); });
+}
+
+}  // namespace wedge::cli
