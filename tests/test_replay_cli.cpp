@@ -1,0 +1,310 @@
+// `wedge replay` as a user runs it, on the shipped scenes and recordings: the hashes guard bit-identical
+// replay, and each replay is also checked for what must physically or behaviourally happen (the grab
+// point follows the hand, the turns reach their planes, one haptic pulse per hit, gravity within a
+// stated angle, the dominoes fall, the real Quest stream stays finite and bounded). Bad input exits 2
+// naming the file and the problem, with no output left behind.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <array>
+#include <map>
+#include <set>
+
+#include "cli_runner.hpp"
+
+using namespace cli_runner;
+
+namespace {
+
+const fs::path kRoot = WEDGE_SOURCE_DIR;
+
+// The file's absolute path, quoted for the shell. (Appended piece by piece: GCC 12 wrongly warns
+// -Wrestrict about "'" + std::string + "'".)
+std::string path(const std::string& relative) {
+  std::string quoted(1, '\'');
+  quoted += (kRoot / relative).string();
+  quoted += '\'';
+  return quoted;
+}
+
+std::vector<json> read_lines(const fs::path& p) {
+  std::vector<json> v;
+  std::istringstream in(read_file(p));
+  for (std::string line; std::getline(in, line);) v.push_back(json::parse(line));
+  return v;
+}
+
+std::vector<double> vec(const json& j) { return j.get<std::vector<double>>(); }
+
+// A body's state line by name.
+const json& body(const json& state, const std::string& name) {
+  for (const json& b : state["bodies"])
+    if (b["name"] == name) return b;
+  FAIL("no body " << name);
+  return state;
+}
+
+// R x ~R for a 4D rotor [s, e01, e02, e03, e12, e13, e23, e0123] (the state's order), by a geometric
+// product over basis-blade bitmasks written here, independent of the engine's GA code.
+using Mv = std::array<double, 16>;
+int reorder_sign(unsigned a, unsigned b) {
+  int swaps = 0;
+  for (a >>= 1; a; a >>= 1) swaps += __builtin_popcount(a & b);
+  return swaps & 1 ? -1 : 1;
+}
+Mv gp(const Mv& x, const Mv& y) {
+  Mv r{};
+  for (unsigned a = 0; a < 16; ++a)
+    for (unsigned b = 0; b < 16; ++b) r[a ^ b] += reorder_sign(a, b) * x[a] * y[b];
+  return r;
+}
+std::vector<double> rotate4(const std::vector<double>& R, int axis) {
+  Mv r{}, rr{}, e{};
+  const unsigned blades[8] = {0, 0b0011, 0b0101, 0b1001, 0b0110, 0b1010, 0b1100, 0b1111};
+  for (int k = 0; k < 8; ++k) {
+    r[blades[k]] = R[k];
+    const int grade = __builtin_popcount(blades[k]);
+    rr[blades[k]] = (grade * (grade - 1) / 2) % 2 ? -R[k] : R[k];  // the reverse
+  }
+  e[1u << axis] = 1.0;
+  const Mv out = gp(gp(r, e), rr);
+  return {out[1], out[2], out[4], out[8]};
+}
+
+double dot4(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+struct Replay {
+  Result result;
+  std::vector<json> states, events;
+};
+
+Replay replay(const TempDir& dir, const std::string& scene, const std::string& recordings,
+              const std::string& extra = "") {
+  Replay r;
+  r.result = dir.run("replay " + path(scene) + " " + recordings + " --out states.jsonl --events events.jsonl " + extra);
+  if (r.result.code == 0) {
+    r.states = read_lines(dir.path() / "states.jsonl");
+    r.events = read_lines(dir.path() / "events.jsonl");
+  }
+  return r;
+}
+
+}  // namespace
+
+// Every shipped recording is in at least one replay of recordings/hashes.json (written by
+// tools/update_replay_hashes.sh after an intentional change); every replay reproduces its hash.
+TEST_CASE("wedge replay: shipped replays reproduce their recorded state hashes", "[cli][replay][determinism]") {
+  const json recorded = json::parse(read_file(kRoot / "recordings" / "hashes.json"));
+  std::set<std::string> covered;
+  for (const auto& [name, r] : recorded.items()) {
+    INFO(name);
+    std::string recs;
+    for (const json& f : r["recordings"]) {
+      recs += ' ';
+      recs += path(f.get<std::string>());
+      covered.insert(f.get<std::string>());
+    }
+    TempDir dir;
+    const Result res = dir.run("replay " + path(r["scene"].get<std::string>()) + recs + " --every 1000000 --hash");
+    REQUIRE(res.code == 0);
+    const auto lines = res.lines();
+    REQUIRE(!lines.empty());
+    CHECK(lines.back()["state_hash"].get<std::string>() == r["state_hash"].get<std::string>());
+  }
+  for (const auto& e : fs::recursive_directory_iterator(kRoot / "recordings")) {
+    if (e.path().extension() != ".jsonl") continue;
+    const std::string rel = fs::relative(e.path(), kRoot).string();
+    INFO(rel);
+    CHECK(covered.count(rel) == 1);
+  }
+}
+
+TEST_CASE("wedge replay: the toy table session grabs, turns into w, knocks and throws", "[cli][replay]") {
+  TempDir dir;
+  const Replay r = replay(dir, "scenes/toy_table_4d.json", path("recordings/scripted/toy_table_grab.jsonl"));
+  INFO(r.result.err);
+  REQUIRE(r.result.code == 0);
+  CHECK(r.result.out.find("1 grab, 1 release") != std::string::npos);
+  // One grab of the red tesseract when the squeeze comes (t = 1.2 s), one release when it opens (5.75 s).
+  std::vector<json> grabs, releases, pulses;
+  for (const json& e : r.events) (e["type"] == "grab" ? grabs : e["type"] == "release" ? releases : pulses).push_back(e);
+  REQUIRE(grabs.size() == 1);
+  CHECK(grabs[0]["body"] == "red");
+  CHECK(grabs[0]["hand"] == "right");
+  CHECK(grabs[0]["t"].get<double>() == Approx(1.2).margin(0.02));
+  REQUIRE(releases.size() == 1);
+  CHECK(releases[0]["t"].get<double>() == Approx(5.75).margin(0.02));
+  CHECK(vec(releases[0]["velocity"])[0] > 1.0);  // thrown toward +x (the hand moved at 2 m/s)
+  // The grab point follows the hand: its world position from the state, against the hand's point.
+  const std::vector<double> local = vec(grabs[0]["local_point"]);
+  double carrying = 0.0, still = 0.0;
+  for (const json& s : r.states) {
+    const double t = s["time"].get<double>();
+    if (s["hands"][1]["holding"] != "red") continue;
+    const json& red = body(s, "red");
+    // World point = position + R local ~R; the state gives the rotor, so use the centre and the
+    // grab event's world point instead: the distance of the hand to the body's centre is preserved
+    // by a rigid grab. |hand - centre| against |grab point - centre at the grab|.
+    const std::vector<double> c = vec(red["center"]), h = vec(s["hands"][1]["point"]);
+    double d2 = 0, l2 = 0;
+    for (int i = 0; i < 4; ++i) d2 += (h[i] - c[i]) * (h[i] - c[i]), l2 += local[i] * local[i];
+    const double gap = std::abs(std::sqrt(d2) - std::sqrt(l2));
+    if (t > 1.3 && t < 4.7) carrying = std::max(carrying, gap);
+    if (t > 2.7 && t < 2.8) still = std::max(still, gap);
+  }
+  INFO("grab point to hand: " << carrying << " m while carried and turned, " << still << " m held still");
+  CHECK(carrying < 0.03);
+  CHECK(still < 0.01);
+  // Haptics: exactly one pulse on the right hand for the red-blue hit, and each pulse is the red one's.
+  std::map<std::string, int> per_pair;
+  for (const json& p : pulses) {
+    CHECK(p["hand"] == "right");
+    CHECK(p["bodies"][0] == "red");
+    CHECK(p["amplitude"].get<double>() > 0.0);
+    CHECK(p["amplitude"].get<double>() <= 1.0);
+    CHECK(p["duration"].get<double>() == Approx(0.03));
+    ++per_pair[p["bodies"][1].get<std::string>()];
+  }
+  CHECK(per_pair["blue"] == 1);
+  // The blue tesseract was knocked along +x; the red one was thrown off the table's end onto the floor.
+  const json& last = r.states.back();
+  CHECK(vec(body(last, "blue")["center"])[0] > -0.05 + 0.1);
+  CHECK(vec(body(last, "red")["center"])[1] < 0.3);
+  CHECK(vec(body(last, "red")["center"])[0] > 0.8);
+}
+
+TEST_CASE("wedge replay: the held tesseract turns 90 degrees in the slice, then 60 degrees into w",
+          "[cli][replay]") {
+  TempDir dir;
+  const Replay r = replay(dir, "scenes/toy_table_4d.json", path("recordings/scripted/toy_table_grab.jsonl"),
+                          "--until 4.2");
+  REQUIRE(r.result.code == 0);
+  // The body's x axis, R e0 ~R (the first column of its rotation).
+  auto x_axis = [](const std::vector<double>& R) { return rotate4(R, 0); };
+  auto at = [&](double t) -> const json& {
+    for (const json& s : r.states)
+      if (s["time"].get<double>() >= t) return s;
+    return r.states.back();
+  };
+  const double deg = M_PI / 180;
+  // After the 90 degree turn about the controller's z (t = 2.8 s, held still to 3.0 s): x -> y.
+  const std::vector<double> x1 = x_axis(vec(body(at(2.95), "red")["rotor"]));
+  INFO("x axis at 2.95 s: " << x1[0] << " " << x1[1] << " " << x1[2] << " " << x1[3]);
+  CHECK(std::acos(std::min(1.0, dot4(x1, {0, 1, 0, 0}))) < 3 * deg);
+  // After 60 degrees about the controller's x in 4D mode (its x is the world's y now): y -> toward w.
+  const std::vector<double> x2 = x_axis(vec(body(at(4.15), "red")["rotor"]));
+  INFO("x axis at 4.15 s: " << x2[0] << " " << x2[1] << " " << x2[2] << " " << x2[3]);
+  CHECK(std::acos(std::min(1.0, dot4(x2, {0, std::cos(60 * deg), 0, std::sin(60 * deg)}))) < 3 * deg);
+}
+
+TEST_CASE("wedge replay: a phone tilts gravity by its own tilt, and toward w with the button", "[cli][replay]") {
+  TempDir dir;
+  const Replay r = replay(dir, "scenes/toy_table_4d.json", path("recordings/scripted/toy_table_tilt.jsonl"));
+  REQUIRE(r.result.code == 0);
+  auto gravity_at = [&](double t) {
+    for (const json& s : r.states)
+      if (s["time"].get<double>() >= t) return vec(s["gravity"]);
+    return vec(r.states.back()["gravity"]);
+  };
+  // Turned 30 degrees counterclockwise: gravity 30 degrees from -y toward -x, in the slice. The filter's
+  // quick time constant (0.25 s, no gyro) has had 1.9 s: within 0.5 degree.
+  const std::vector<double> g1 = gravity_at(3.9);
+  CHECK(std::atan2(-g1[0], -g1[1]) * 180 / M_PI == Approx(30.0).margin(0.5));
+  CHECK(g1[3] == 0.0);
+  // With the tilt on: 15 degrees out of the slice toward +w; |g| stays 9.81.
+  const std::vector<double> g2 = gravity_at(6.9);
+  const double in_slice = std::sqrt(g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2]);
+  CHECK(std::atan2(g2[3], in_slice) * 180 / M_PI == Approx(15.0).margin(1e-6));
+  CHECK(std::sqrt(dot4(g2, g2)) == Approx(9.81).epsilon(1e-12));
+  // tan 30 = 0.58 > the friction coefficient 0.5: the tesseracts slide toward -x.
+  CHECK(vec(body(r.states.back(), "red")["center"])[0] < -0.45);
+}
+
+TEST_CASE("wedge replay: controllers and a phone merge by time", "[cli][replay]") {
+  TempDir dir;
+  const Replay r = replay(dir, "scenes/toy_table_4d.json",
+                          path("recordings/scripted/toy_table_grab.jsonl") + " " +
+                              path("recordings/scripted/toy_table_tilt.jsonl"),
+                          "--until 4");
+  REQUIRE(r.result.code == 0);
+  CHECK(r.events.at(0)["type"] == "grab");
+  const std::vector<double> g = vec(r.states.back()["gravity"]);
+  CHECK(std::atan2(-g[0], -g[1]) * 180 / M_PI == Approx(30.0).margin(0.5));
+}
+
+TEST_CASE("wedge replay: the dominoes are caught, turned and pushed over", "[cli][replay]") {
+  TempDir dir;
+  const Replay r = replay(dir, "scenes/fig3_dominoes_4d.json", path("recordings/scripted/dominoes_push.jsonl"));
+  REQUIRE(r.result.code == 0);
+  REQUIRE(r.events.size() >= 2);
+  CHECK(r.events[0]["type"] == "grab");
+  CHECK(r.events[0]["body"] == "domino0");
+  CHECK(r.events[0]["step"] == 0);
+  const json& last = r.states.back();
+  // An upright domino's centre is 0.6 m high; a fallen one leans on the next or lies: below 0.45 m.
+  for (int i = 1; i <= 7; ++i) {
+    INFO("domino" << i);
+    CHECK(vec(body(last, "domino" + std::to_string(i))["center"])[1] < 0.45);
+  }
+}
+
+TEST_CASE("wedge replay: the real Quest 2 stream replays finite and bounded", "[cli][replay]") {
+  TempDir dir;
+  const Replay r = replay(dir, "scenes/toy_table_4d.json", path("recordings/quest2/sample_movement.jsonl"),
+                          "--every 12");
+  INFO(r.result.err);
+  REQUIRE(r.result.code == 0);  // (a non-finite state is an error, exit 2 or 3)
+  CHECK(r.states.back()["time"].get<double>() == Approx(132.3).margin(0.01));  // (every 12th of 15880 steps)
+  CHECK(r.result.out.find("1 grab, 1 release") != std::string::npos);  // the orange tesseract, at 34.75 s
+  double fastest = 0.0, lowest = 1e9;
+  for (const json& s : r.states)
+    for (const json& b : s["bodies"]) {
+      if (b["name"] == "floor" || b["name"] == "table") continue;
+      fastest = std::max(fastest, std::sqrt(dot4(vec(b["velocity"]), vec(b["velocity"]))));
+      lowest = std::min(lowest, vec(b["center"])[1]);
+    }
+  INFO("fastest body " << fastest << " m/s, lowest centre " << lowest << " m");
+  CHECK(fastest < 20.0);  // tracking spikes reach the bodies only through the force limit
+  CHECK(lowest > 0.05);   // nothing through the floor (a tesseract resting on it has its centre at 0.08)
+}
+
+TEST_CASE("wedge replay: bad recordings and misfits exit 2 naming the file, with no output", "[cli][replay]") {
+  TempDir dir;
+  const std::string good = read_file(kRoot / "recordings/scripted/toy_table_grab.jsonl");
+  const std::string header = good.substr(0, good.find('\n') + 1);
+  auto refused = [&](const std::string& name, const std::string& text, const std::string& scene,
+                     const std::string& expect) {
+    dir.write(name, text);
+    const Result res = dir.run("replay " + path(scene) + " " + name + " --out states.jsonl --events events.jsonl");
+    INFO(res.err);
+    CHECK(res.code == 2);
+    CHECK(res.err.find(name) != std::string::npos);
+    CHECK(res.err.find(expect) != std::string::npos);
+    CHECK_FALSE(fs::exists(dir.path() / "states.jsonl"));
+    CHECK_FALSE(fs::exists(dir.path() / "events.jsonl"));
+  };
+  std::string v2 = header;
+  v2.replace(v2.find("\"version\":1"), 11, "\"version\":2");
+  refused("v2.jsonl", v2, "scenes/toy_table_4d.json", "version");
+  refused("back.jsonl",
+          header + "{\"t\":1,\"type\":\"motion\",\"acceleration\":[0,-1,0],\"tilt\":false}\n" +
+              "{\"t\":0.5,\"type\":\"motion\",\"acceleration\":[0,-1,0],\"tilt\":false}\n",
+          "scenes/toy_table_4d.json", ":3:");
+  refused("mode4d.jsonl", good, "scenes/projectile_3d.json", "4D rotation mode");
+  refused("nograv.jsonl", header + "{\"t\":0,\"type\":\"motion\",\"acceleration\":[0,-1,0],\"tilt\":false}\n",
+          "scenes/free_5d.json", "no gravity");
+  const Result missing = dir.run("replay " + path("scenes/toy_table_4d.json") + " nowhere.jsonl");
+  CHECK(missing.code == 2);
+  CHECK(missing.err.find("nowhere.jsonl") != std::string::npos);
+
+  // A recording cut off mid-line replays every complete sample, with a warning naming the torn line.
+  const std::string torn = good.substr(0, good.find('\n', good.size() / 2) + 40);
+  dir.write("torn.jsonl", torn);
+  const Result t = dir.run("replay " + path("scenes/toy_table_4d.json") + " torn.jsonl --out states.jsonl");
+  CHECK(t.code == 0);
+  CHECK(t.err.find("torn.jsonl") != std::string::npos);
+  CHECK(t.err.find("torn") != std::string::npos);
+}
