@@ -219,7 +219,7 @@ TEMPLATE_TEST_CASE("one haptic pulse per contact a held body begins, rising with
   CHECK(pulse_amplitude(5.0, 2.0, 0.1) == 1.0);
 }
 
-TEST_CASE("a still phone tilted by a known angle tilts gravity by that angle; the tilt leaves the slice",
+TEST_CASE("a still phone tilted by a known angle tilts gravity by that angle, and the tilt leaves the slice",
           "[input][gravity]") {
   for (double tilt_deg : {0.0, 10.0, 35.0}) {
     for (bool tilt_on : {false, true}) {

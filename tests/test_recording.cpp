@@ -134,7 +134,7 @@ TEST_CASE("recording: write then read gives back every sample bit for bit", "[re
   CHECK(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()) == 2);
 }
 
-TEST_CASE("recording: a header-only file is an empty recording; CRLF lines and integers are fine", "[recordings]") {
+TEST_CASE("recording: a header-only file is an empty recording, CRLF lines and integers are fine", "[recordings]") {
   Folder dir;
   const Recording empty = read_recording(dir.write("empty.jsonl", kHeader + "\n"));
   CHECK(empty.source == "script");

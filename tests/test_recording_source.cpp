@@ -87,7 +87,7 @@ TEST_CASE("recording source: interpolate within gaps, hold across them, buttons 
   CHECK(src.duration() == 0.40);
 }
 
-TEST_CASE("recording source: accelerometer samples each in their window; merging recordings", "[input]") {
+TEST_CASE("recording source: accelerometer samples each in their window, and merging recordings", "[input]") {
   Recording phone;
   for (int i = 0; i < 10; ++i) {
     MotionSample m;
