@@ -136,7 +136,7 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     const Scene<N> scene = load_scene<N>(doc, file);
     const double h = run.dt ? *run.dt : scene.timestep;
     World<N> world = scene.make_world(file);
-    SceneSlices<N> slices(scene, w, subdivisions, file);
+    slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file);
 
     // Simulate first: the states of the frames to draw, and the corners of the box around every body's
     // slice in every one of them: what the camera must show.
@@ -198,7 +198,7 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     // also frames the feet of the points on it, where the shadows fall.
     render::FrameDesc frame;
     frame.ground.enabled = true;
-    if (const auto g = slices.ground(scene, world)) {
+    if (const auto g = slices.ground(world)) {
       frame.ground.normal = g->first;  // out of the solid {n . y <= offset}
       frame.ground.offset = g->second;
     } else {

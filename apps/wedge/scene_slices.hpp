@@ -1,7 +1,5 @@
-// The 3D view of a scene for `wedge render` and `wedge slice`: display meshes of its bounded bodies,
-// the chain of slicing hyperplanes from --w (x_{n-1} = w1 in the world, then x_{n-2} = w2 in that
-// slice, ..), and the slices of a world's bodies in the final 3D frame. Halfspaces are not sliced:
-// the first static one becomes the ground plane of the picture.
+// The slice options of `wedge render` and `wedge slice` (--w, --subdivisions) and the scene's World
+// prepared for slicing by the library piece slicing::WorldSlices.
 #pragma once
 
 #include <array>
@@ -12,7 +10,7 @@
 #include "scene_json.hpp"
 #include "step_options.hpp"
 #include "wedge/ga/products.hpp"
-#include "wedge/slicing/slicer.hpp"
+#include "wedge/slicing/world_slices.hpp"
 
 namespace wedge::cli {
 
@@ -50,81 +48,12 @@ inline int parse_subdivisions(const std::string& scene, const std::string& text,
   return int(s);
 }
 
+// The scene's World prepared for slicing (slicing::WorldSlices, shared with the viewer and the OpenXR
+// app); a shape that cannot be tessellated is named with the file.
 template <int N>
-class SceneSlices {
- public:
-  struct Entry {
-    int body = 0;                 // index in the scene
-    slicing::BodySlicer<N> slicer;
-    double radius = 0.0;          // m, of a ball about the centre of mass holding the whole mesh
-  };
-
-  SceneSlices(const Scene<N>& scene, const std::vector<double>& w, int subdivisions, const std::string& file) {
-    std::array<double, std::size_t(N - 3)> offsets{};
-    for (std::size_t i = 0; i < w.size() && i < offsets.size(); ++i) offsets[i] = w[i];
-    chain_ = slicing::SliceChain<N>::axes(offsets);
-    flat_ = chain_.flat();
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      const SceneBody<N>& b = scene.bodies[i];
-      if (!b.shape.bounded()) {
-        if (!ground_body_ && b.def.type == BodyType::Static) ground_body_ = int(i);
-        continue;
-      }
-      const slicing::DisplayMesh<N> mesh = with_file_context(file, index_path("bodies", i) + ".shape", [&] {
-        return slicing::display_mesh<N>(b.shape, subdivisions);
-      });
-      double r = 0.0;
-      for (const Vec<N>& v : mesh.vertices) r = std::max(r, (v - b.def.local_center).norm());
-      entries_.push_back(Entry{int(i), slicing::BodySlicer<N>(mesh), r});
-    }
-  }
-
-  const std::vector<Entry>& entries() const { return entries_; }
-  const slicing::Flat3<N>& flat() const { return flat_; }
-
-  // The slice of each bounded body (entries() order) in the world's current state.
-  void slice(const World<N>& world, std::vector<slicing::DisplayMesh<3>>& out) {
-    out.resize(entries_.size());
-    for (std::size_t k = 0; k < entries_.size(); ++k) {
-      const Body<N>& b = world.body(BodyId{std::uint32_t(entries_[k].body)});
-      out[k] = entries_[k].slicer.slice(slicing::Placement<N>{to_matrix(b.rotor), b.position()}, chain_);
-    }
-  }
-
-  // A ball in slice coordinates holding body k's slice (absent if the slice misses the body): the
-  // body lies in the ball of `radius` about its centre, whose cut by the 3-flat is the ball of radius
-  // sqrt(radius^2 - d^2) about the centre's foot point, d the centre's distance from the flat.
-  std::optional<std::pair<Eigen::Vector3d, double>> slice_bound(const World<N>& world, std::size_t k) const {
-    const Vec<N> rel = world.body(BodyId{std::uint32_t(entries_[k].body)}).center - flat_.origin;
-    const Eigen::Vector3d y = flat_.frame.transpose() * rel;
-    const double d2 = std::max(0.0, rel.squaredNorm() - y.squaredNorm());
-    const double r2 = entries_[k].radius * entries_[k].radius - d2;
-    if (!(r2 > 0.0)) return std::nullopt;
-    return std::make_pair(y, std::sqrt(r2));
-  }
-
-  // A world vector in slice coordinates (its projection onto the 3-flat).
-  Eigen::Vector3d to_slice_vector(const Vec<N>& v) const { return flat_.frame.transpose() * v; }
-
-  // The ground: the first static halfspace {n . x <= offset}, placed by its body, cut by the flat:
-  // {y : (F^T n) . y <= offset - n . origin}, normalised. Absent if there is none or it is parallel.
-  std::optional<std::pair<Eigen::Vector3d, double>> ground(const Scene<N>& scene, const World<N>& world) const {
-    if (!ground_body_) return std::nullopt;
-    const auto& hs = scene.bodies[std::size_t(*ground_body_)].shape.template as<shapes::Halfspace<N>>();
-    const Body<N>& b = world.body(BodyId{std::uint32_t(*ground_body_)});
-    const Vec<N> n = rotate(b.rotor, hs.normal);
-    const double offset = hs.offset + n.dot(b.position()) - n.dot(flat_.origin);
-    const Eigen::Vector3d n3 = flat_.frame.transpose() * n;
-    const double len = n3.norm();
-    if (!(len > 1e-9)) return std::nullopt;
-    return std::make_pair(Eigen::Vector3d(n3 / len), offset / len);
-  }
-
- private:
-  slicing::SliceChain<N> chain_;
-  slicing::Flat3<N> flat_;
-  std::vector<Entry> entries_;
-  std::optional<int> ground_body_;
-};
+slicing::WorldSlices<N> scene_slices(const World<N>& world, const std::vector<double>& w, int subdivisions,
+                                     const std::string& file) {
+  return with_file_context(file, "", [&] { return slicing::WorldSlices<N>(world, w, subdivisions); });
+}
 
 }  // namespace wedge::cli

@@ -40,7 +40,7 @@ int slice(const Json& doc, const SliceOptions& o, const std::vector<double>& w, 
   } else {
     const Scene<N> scene = load_scene<N>(doc, file);
     const World<N> world = scene.make_world(file);
-    SceneSlices<N> slices(scene, w, subdivisions, file);
+    slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file);
     std::vector<slicing::DisplayMesh<3>> meshes;
     slices.slice(world, meshes);
 

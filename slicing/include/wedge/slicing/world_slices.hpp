@@ -1,0 +1,58 @@
+// The 3D view of a World, shared by `wedge render`, `wedge slice`, the desktop viewer and the OpenXR app:
+// display meshes of its bounded bodies, the chain of slicing hyperplanes from the slice offsets
+// (x_{n-1} = w1 in the world, then x_{n-2} = w2 in that slice, ..), and the slices of the bodies in the
+// final 3D frame. Half-spaces are not sliced: the first static one is the ground of the picture.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "wedge/slicing/slicer.hpp"
+#include "wedge/world.hpp"
+
+namespace wedge::slicing {
+
+template <int N>
+class WorldSlices {
+ public:
+  struct Entry {
+    int body = 0;          // index in the world
+    BodySlicer<N> slicer;
+    double radius = 0.0;   // m, of a ball about the centre of mass holding the whole mesh
+  };
+
+  // offsets: up to N - 3 slice offsets (missing ones are 0). subdivisions: the display tessellation of
+  // round shapes. Throws wedge::Error "bodies[i].shape: ..." for a shape that cannot be tessellated.
+  WorldSlices(const World<N>& world, const std::vector<double>& offsets, int subdivisions);
+
+  const std::vector<Entry>& entries() const { return entries_; }
+  const Flat3<N>& flat() const { return flat_; }
+  const SliceChain<N>& chain() const { return chain_; }
+
+  // The slice of each bounded body (entries() order) in the world's current state.
+  void slice(const World<N>& world, std::vector<DisplayMesh<3>>& out);
+
+  // A ball in slice coordinates holding body k's slice (absent if the slice misses the body): the body
+  // lies in the ball of `radius` about its centre, whose cut by the 3-flat is the ball of radius
+  // sqrt(radius^2 - d^2) about the centre's foot point, d the centre's distance from the flat.
+  std::optional<std::pair<Eigen::Vector3d, double>> slice_bound(const World<N>& world, std::size_t k) const;
+
+  // A world vector in slice coordinates (its projection onto the 3-flat).
+  Eigen::Vector3d to_slice_vector(const Vec<N>& v) const { return flat_.frame.transpose() * v; }
+  // A world point in slice coordinates (its foot point on the 3-flat).
+  Eigen::Vector3d to_slice_point(const Vec<N>& x) const { return flat_.frame.transpose() * (x - flat_.origin); }
+
+  // The ground: the first static half-space {n . x <= offset}, placed by its body, cut by the flat:
+  // {y : (F^T n) . y <= offset - n . origin}, normalised. Absent if there is none or it is parallel.
+  std::optional<std::pair<Eigen::Vector3d, double>> ground(const World<N>& world) const;
+
+ private:
+  SliceChain<N> chain_;
+  Flat3<N> flat_;
+  std::vector<Entry> entries_;
+  std::optional<int> ground_body_;
+};
+
+}  // namespace wedge::slicing

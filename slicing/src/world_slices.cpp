@@ -1,0 +1,78 @@
+// WorldSlices (world_slices.hpp): a World's bodies prepared for slicing, and their slices.
+#include "wedge/slicing/world_slices.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "wedge/error.hpp"
+#include "wedge/slicing/display_mesh.hpp"
+
+namespace wedge::slicing {
+
+template <int N>
+WorldSlices<N>::WorldSlices(const World<N>& world, const std::vector<double>& w, int subdivisions) {
+  std::array<double, std::size_t(N - 3)> offsets{};
+  for (std::size_t i = 0; i < w.size() && i < offsets.size(); ++i) offsets[i] = w[i];
+  chain_ = SliceChain<N>::axes(offsets);
+  flat_ = chain_.flat();
+  for (int i = 0; i < world.body_count(); ++i) {
+    const BodyId id{std::uint32_t(i)};
+    const Shape<N>* shape = world.shape(id);
+    if (!shape) continue;
+    if (!shape->bounded()) {
+      if (!ground_body_ && world.body(id).type == BodyType::Static) ground_body_ = i;
+      continue;
+    }
+    DisplayMesh<N> mesh;
+    try {
+      mesh = display_mesh<N>(*shape, subdivisions);
+    } catch (const Error& e) {
+      throw Error("bodies[" + std::to_string(i) + "].shape: " + e.what());
+    }
+    double r = 0.0;
+    for (const Vec<N>& v : mesh.vertices) r = std::max(r, (v - world.body(id).local_center).norm());
+    entries_.push_back(Entry{i, BodySlicer<N>(mesh), r});
+  }
+}
+
+template <int N>
+void WorldSlices<N>::slice(const World<N>& world, std::vector<DisplayMesh<3>>& out) {
+  out.resize(entries_.size());
+  for (std::size_t k = 0; k < entries_.size(); ++k) {
+    const Body<N>& b = world.body(BodyId{std::uint32_t(entries_[k].body)});
+    out[k] = entries_[k].slicer.slice(Placement<N>{to_matrix(b.rotor), b.position()}, chain_);
+  }
+}
+
+template <int N>
+std::optional<std::pair<Eigen::Vector3d, double>> WorldSlices<N>::slice_bound(const World<N>& world,
+                                                                              std::size_t k) const {
+  const Vec<N> rel = world.body(BodyId{std::uint32_t(entries_[k].body)}).center - flat_.origin;
+  const Eigen::Vector3d y = flat_.frame.transpose() * rel;
+  const double d2 = std::max(0.0, rel.squaredNorm() - y.squaredNorm());
+  const double r2 = entries_[k].radius * entries_[k].radius - d2;
+  if (!(r2 > 0.0)) return std::nullopt;
+  return std::make_pair(y, std::sqrt(r2));
+}
+
+template <int N>
+std::optional<std::pair<Eigen::Vector3d, double>> WorldSlices<N>::ground(const World<N>& world) const {
+  if (!ground_body_) return std::nullopt;
+  const BodyId id{std::uint32_t(*ground_body_)};
+  const auto& hs = world.shape(id)->template as<shapes::Halfspace<N>>();
+  const Body<N>& b = world.body(id);
+  const Vec<N> n = rotate(b.rotor, hs.normal);
+  const double offset = hs.offset + n.dot(b.position()) - n.dot(flat_.origin);
+  const Eigen::Vector3d n3 = flat_.frame.transpose() * n;
+  const double len = n3.norm();
+  if (!(len > 1e-9)) return std::nullopt;
+  return std::make_pair(Eigen::Vector3d(n3 / len), offset / len);
+}
+
+template class WorldSlices<3>;
+template class WorldSlices<4>;
+template class WorldSlices<5>;
+template class WorldSlices<6>;
+
+}  // namespace wedge::slicing

@@ -1,0 +1,77 @@
+// slicing::WorldSlices (the World-to-slice glue shared by render, slice, the viewer and OpenXR), 4D and
+// 5D: which bodies the slice meets follows from their w alone (a tesseract of half size a meets the slice
+// w = w0 iff |w - w0| <= a), the slice of a tesseract cut straight is its 3D cube (volume (2a)^3), the
+// ground is the half-space's cut, and moving the slice moves what is seen.
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include "wedge/mass.hpp"
+#include "wedge/slicing/world_slices.hpp"
+
+using namespace wedge;
+
+namespace {
+template <int N>
+World<N> row_in_w() {
+  World<N> world;
+  BodyDef<N> ground;
+  ground.type = BodyType::Static;
+  Vec<N> up = Vec<N>::Zero();
+  up[1] = 1.0;
+  ground.shape = std::make_shared<const Shape<N>>(Shape<N>::halfspace(up, 0.0));
+  world.add_body(ground);
+  for (int i = 0; i < 3; ++i) {  // at w = 0, 0.4, 2 (half size 0.5)
+    BodyDef<N> d;
+    d.shape = std::make_shared<const Shape<N>>(Shape<N>::box(Vec<N>::Constant(0.5)));
+    const MassProperties<N> mp = box_mass_properties<N>(Vec<N>::Constant(0.5), 1.0);
+    d.mass = mp.mass;
+    d.inertia = mp.inertia;
+    d.position = 0.5 * up;
+    d.position[0] = 2.0 * i;
+    d.position[N - 1] = i == 0 ? 0.0 : (i == 1 ? 0.4 : 2.0);
+    world.add_body(d);
+  }
+  return world;
+}
+
+double volume(const slicing::DisplayMesh<3>& m) {  // closed outward triangle mesh: divergence theorem
+  double v = 0.0;
+  for (const auto& c : m.cells) v += m.vertices[c[0]].dot(m.vertices[c[1]].cross(m.vertices[c[2]])) / 6.0;
+  return v;
+}
+}  // namespace
+
+TEST_CASE("WorldSlices: what the slice meets follows from w", "[slicing]") {
+  const World<4> world = row_in_w<4>();
+  for (double w0 : {0.0, 0.3, 1.8}) {
+    slicing::WorldSlices<4> slices(world, {w0}, 1);
+    REQUIRE(slices.entries().size() == 3);  // the half-space is not sliced
+    std::vector<slicing::DisplayMesh<3>> meshes;
+    slices.slice(world, meshes);
+    const double w[3] = {0.0, 0.4, 2.0};
+    for (int k = 0; k < 3; ++k) {
+      INFO("w0 " << w0 << ", body " << k);
+      const bool meets = std::abs(w[k] - w0) <= 0.5;
+      CHECK(meshes[k].empty() == !meets);
+      CHECK(slices.slice_bound(world, std::size_t(k)).has_value() == (std::abs(w[k] - w0) < 0.5 * std::sqrt(4.0)));
+      if (meets) CHECK(volume(meshes[k]) == Approx(1.0).epsilon(1e-9));  // the unit cube
+    }
+    const auto g = slices.ground(world);
+    REQUIRE(g);
+    CHECK((g->first - Eigen::Vector3d::UnitY()).norm() < 1e-12);
+    CHECK(g->second == Approx(0.0).margin(1e-12));
+  }
+}
+
+TEST_CASE("WorldSlices: 5D offsets go to x4, then x3", "[slicing]") {
+  const World<5> world = row_in_w<5>();  // the row is offset along x4
+  std::vector<slicing::DisplayMesh<3>> meshes;
+  slicing::WorldSlices<5> at_two(world, {2.0, 0.0}, 1);
+  at_two.slice(world, meshes);
+  CHECK(meshes[0].empty());
+  CHECK_FALSE(meshes[2].empty());
+  slicing::WorldSlices<5> off(world, {2.0, 0.7}, 1);  // x3 = 0.7: beyond every body's half size
+  off.slice(world, meshes);
+  for (const auto& m : meshes) CHECK(m.empty());
+}
