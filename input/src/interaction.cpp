@@ -205,17 +205,22 @@ void Interaction<N>::grab_and_release(const InputFrame& frame) {
       hs.body = hit->body;
       hs.holding = true;
       hs.offset = reverse(hs.frame) * b.rotor;
-      InteractionEvent<N> e;
-      e.kind = InteractionEvent<N>::Kind::Grab;
-      e.hand = k;
-      e.body = hit->body;
+      InteractionEvent<N>& e = new_event(InteractionEvent<N>::Kind::Grab, k, hit->body);
       e.point = at;
       e.local_point = def.local_point;
-      e.t = t_;
-      e.step = world_.step_count();
-      events_.push_back(e);
     }
   }
+}
+
+template <int N>
+InteractionEvent<N>& Interaction<N>::new_event(typename InteractionEvent<N>::Kind kind, int hand, BodyId body) {
+  InteractionEvent<N>& e = events_.emplace_back();
+  e.kind = kind;
+  e.hand = hand;
+  e.body = body;
+  e.t = t_;
+  e.step = world_.step_count();
+  return e;
 }
 
 template <int N>
@@ -224,15 +229,9 @@ void Interaction<N>::release(int hand) {
   world_.remove_grab(hs.grab);
   hs.holding = false;
   const Body<N>& b = world_.body(hs.body);
-  InteractionEvent<N> e;
-  e.kind = InteractionEvent<N>::Kind::Release;
-  e.hand = hand;
-  e.body = hs.body;
+  InteractionEvent<N>& e = new_event(InteractionEvent<N>::Kind::Release, hand, hs.body);
   e.velocity = b.velocity;
   e.angular_velocity = b.angular_velocity;
-  e.t = t_;
-  e.step = world_.step_count();
-  events_.push_back(e);
 }
 
 // The grab spring pulls the grab point to the hand (solved with the contacts, in the step); the turn is

@@ -111,20 +111,18 @@ Recording import_questset_csv(const std::string& path) {
     };
     // TouchButtons is one mask for both controllers: A and B are on the right one, X and Y on the left.
     const auto buttons = std::uint32_t(v[kButtons]);
-    HandSample left;
-    left.t = t;
-    left.hand = Hand::Left;
-    left.pose = pose(kLeftPose, "LeftTouch");
-    left.squeeze = v[kLeftHand];
-    left.trigger = v[kLeftIndex];
-    left.buttons = buttons & (kButtonX | kButtonY);
-    HandSample right;
-    right.t = t;
-    right.hand = Hand::Right;
-    right.pose = pose(kRightPose, "RightTouch");
-    right.squeeze = v[kRightHand];
-    right.trigger = v[kRightIndex];
-    right.buttons = buttons & (kButtonA | kButtonB);
+    auto hand = [&](Hand which, int first, const char* name, int squeeze, int trigger, std::uint32_t mask) {
+      HandSample h;
+      h.t = t;
+      h.hand = which;
+      h.pose = pose(first, name);
+      h.squeeze = v[squeeze];
+      h.trigger = v[trigger];
+      h.buttons = buttons & mask;
+      return h;
+    };
+    const HandSample left = hand(Hand::Left, kLeftPose, "LeftTouch", kLeftHand, kLeftIndex, kButtonX | kButtonY);
+    const HandSample right = hand(Hand::Right, kRightPose, "RightTouch", kRightHand, kRightIndex, kButtonA | kButtonB);
     const HeadSample head{t, pose(kHeadPose, "Head")};
     r.hands.push_back(left);
     r.hands.push_back(right);

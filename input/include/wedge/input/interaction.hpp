@@ -120,6 +120,7 @@ class Interaction {
   void grab_and_release(const InputFrame& frame);
   void drive_held(double h);
   void release(int hand);
+  InteractionEvent<N>& new_event(typename InteractionEvent<N>::Kind kind, int hand, BodyId body);
 
   World<N>& world_;
   InteractionSettings<N> settings_;
