@@ -1,5 +1,5 @@
 // wedge render SCENE.json --steps N [--every K] [--dt H] [--w W] --out DIR [--size WxH] [--subdivisions S]
-//              [--sheet FILE.png]
+//              [--sheet FILE.png] [--replay RECORDING...]
 //
 // Simulates a scene and draws the 3D slice of every K-th state (step 0 included) offscreen, through
 // OSMesa, into DIR/frame_00000.png, frame_00001.png, ... and, with --sheet, one contact sheet: up to 12
@@ -25,6 +25,7 @@
 #include <optional>
 
 #include "interrupt.hpp"
+#include "replay_input.hpp"
 #include "scene_slices.hpp"
 #include "verbs.hpp"
 #include "wedge/render/offscreen_context.hpp"
@@ -137,6 +138,8 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     const double h = run.dt ? *run.dt : scene.timestep;
     World<N> world = scene.make_world(file);
     slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file);
+    std::optional<ReplayInput<N>> replay;  // --replay: recordings drive the world through the input layer
+    if (!o.replay.empty()) replay.emplace(scene, world, o.replay, file);
 
     // Simulate first: the states of the frames to draw, and the corners of the box around every body's
     // slice in every one of them: what the camera must show.
@@ -166,7 +169,10 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     Progress sim_progress("simulate", run.steps);
     record();
     for (std::int64_t s = 1; s <= run.steps; ++s) {
-      checked_step(world, h, file);  // checks for Ctrl-C first
+      if (replay)
+        replay->step(world, s - 1, h, file);
+      else
+        checked_step(world, h, file);  // checks for Ctrl-C first
       if (s % run.every == 0) record();
       if (s % 64 == 0) sim_progress.update(s);
     }
@@ -361,6 +367,11 @@ CLI::App* add_render_verb(CLI::App& app, RenderOptions& o) {
                   "Also write a contact sheet: up to 12 frames picked evenly over the run (first and last "
                   "included), downscaled into one PNG grid 4 wide, each labelled with its time")
       ->type_name("FILE.png");
+  cmd->add_option("--replay", o.replay,
+                  "Recordings (docs/recording-format.md) that drive the scene through the input layer while it "
+                  "is drawn, as `wedge replay` does")
+      ->type_name("RECORDING...")
+      ->expected(1, -1);
   cmd->add_option("--subdivisions", o.subdivisions,
                   "Tessellation level of round shapes (1..64; default 16 in 3D, 8 in 4D, 4 in 5D, 2 in 6D)")
       ->type_name("S");

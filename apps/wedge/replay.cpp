@@ -10,10 +10,10 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 #include "interrupt.hpp"
 #include "json_out.hpp"
+#include "replay_input.hpp"
 #include "scene_json.hpp"
 #include "state_json.hpp"
 #include "step_options.hpp"
@@ -29,36 +29,6 @@ namespace {
 const char* hand_name(int hand) { return hand == 0 ? "left" : "right"; }
 
 template <int N>
-input::InteractionSettings<N> interaction_settings(const Scene<N>& scene) {
-  input::InteractionSettings<N> s;
-  s.tracking.origin = scene.interaction.origin;
-  s.tracking.scale = scene.interaction.scale;
-  s.grab_radius = scene.interaction.grab_radius;
-  s.gravity_tilt_on = scene.interaction.gravity_tilt_on;
-  s.gravity_tilt_degrees = scene.interaction.gravity_tilt;
-  return s;
-}
-
-// A recording that cannot mean anything in this scene is refused before anything runs.
-template <int N>
-void check_fit(const Scene<N>& scene, const input::RecordingSource& src, const std::vector<std::string>& files,
-               const std::string& scene_file) {
-  if (N < 4 && src.uses_mode4d()) {
-    const int hand = src.source_of_hand(1) >= 0 ? 1 : 0;
-    throw Failure(files[std::size_t(src.source_of_hand(hand))] + ": uses 4D rotation mode, but " + scene_file +
-                  " is a " + std::to_string(N) + "D scene (no w to turn toward)");
-  }
-  if (N < 4 && src.uses_tilt())
-    throw Failure(files[std::size_t(src.source_of_motion())] + ": turns on the gravity tilt toward w, but " +
-                  scene_file + " is a " + std::to_string(N) + "D scene");
-  if (src.has_motion() && scene.settings.gravity.squaredNorm() == 0.0)
-    throw Failure(files[std::size_t(src.source_of_motion())] + ": has accelerometer samples to tilt gravity, but " +
-                  scene_file + " has no gravity (set \"gravity\" in the scene)");
-  if (!src.has_hands() && !src.has_motion())
-    throw Failure(files.front() + ": holds no hand or accelerometer samples (nothing to replay)");
-}
-
-template <int N>
 int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>& dt, std::int64_t every,
            const std::optional<double>& until) {
   const std::string& file = o.scene;
@@ -66,26 +36,9 @@ int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>&
   const double h = dt ? *dt : scene.timestep;
   World<N> world = scene.make_world(file);
 
-  std::vector<recordings::Recording> recs;
-  for (const std::string& r : o.recordings) {
-    try {
-      recs.push_back(recordings::read_recording(r));
-    } catch (const Error& e) {
-      throw Failure(e.what());  // (the message starts with the file and line)
-    }
-    for (const std::string& w : recs.back().warnings) std::cerr << "warning: " << w << "\n";
-  }
-  input::RecordingSource src = [&] {
-    try {
-      return input::RecordingSource(std::move(recs), o.recordings);
-    } catch (const Error& e) {
-      throw Failure(e.what());
-    }
-  }();
-  check_fit(scene, src, o.recordings, file);
-  input::Interaction<N> in = with_file_context(file, "interaction", [&] {
-    return input::Interaction<N>(world, interaction_settings(scene));
-  });
+  ReplayInput<N> replay(scene, world, o.recordings, file);
+  const input::RecordingSource& src = replay.source();
+  const input::Interaction<N>& in = replay.interaction();
 
   const double end = until ? *until : src.duration();
   const std::int64_t steps = std::int64_t(std::ceil(end / h - 1e-9));
@@ -151,11 +104,8 @@ int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>&
 
   emit();
   for (std::int64_t k = 0; k < steps; ++k) {
-    const input::InputFrame& frame = src.frame_at(double(k) * h);
-    with_file_context(file, "", [&] { in.before_step(frame, h); });
+    replay.step(world, k, h, file);
     event_lines();
-    checked_step(world, h, file);
-    in.after_step();
     pulse_lines();
     if ((k + 1) % every == 0) emit();
   }

@@ -39,11 +39,13 @@ CLI::App* add_collide_verb(CLI::App& app, CollideOptions& options);
 int run_collide(const CollideOptions& options);
 
 // wedge render SCENE.json --steps N [--every K] [--dt H] [--w W] --out DIR [--size WxH] [--subdivisions S]
+//              [--sheet FILE] [--replay RECORDING...]
 //   [--sheet FILE.png]
 struct RenderOptions {
   std::string scene;
   std::string steps, dt, every, w, size, subdivisions;
   std::string out, sheet;
+  std::vector<std::string> replay;  // recordings driving the scene through the input layer (as `replay`)
 };
 CLI::App* add_render_verb(CLI::App& app, RenderOptions& options);
 int run_render(const RenderOptions& options);
