@@ -1,5 +1,5 @@
 // wedge: the command-line front end of the engine. Dispatches to one verb per file (inertia.cpp,
-// simulate.cpp, collide.cpp, render.cpp, slice.cpp, import.cpp, replay.cpp); exit codes in cli_error.hpp.
+// simulate.cpp, collide.cpp, render.cpp, slice.cpp, import.cpp, replay.cpp, view.cpp); exit codes in cli_error.hpp.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <exception>
@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   SliceOptions slice;
   ImportOptions import_options;
   ReplayOptions replay;
+  ViewOptions view;
   CLI::App* inertia_cmd = add_inertia_verb(app, inertia);
   CLI::App* simulate_cmd = add_simulate_verb(app, simulate);
   CLI::App* collide_cmd = add_collide_verb(app, collide);
@@ -36,10 +37,11 @@ int main(int argc, char** argv) {
   CLI::App* slice_cmd = add_slice_verb(app, slice);
   CLI::App* import_cmd = add_import_verb(app, import_options);
   CLI::App* replay_cmd = add_replay_verb(app, replay);
+  CLI::App* view_cmd = add_view_verb(app, view);
 
   // The verb comes first. Name an unknown one (CLI11 would only say that a subcommand is required), and
   // take `wedge help [VERB]` as the --help it means.
-  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice", "import", "replay"};
+  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice", "import", "replay", "view"};
   std::vector<std::string> args(argv + 1, argv + argc);
   if (!args.empty() && args[0] == "help") {
     if (args.size() == 1) {
@@ -51,7 +53,7 @@ int main(int argc, char** argv) {
   if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
       std::find(verbs.begin(), verbs.end(), args[0]) == verbs.end()) {
     std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render, "
-              << "slice, import and replay)\nRun 'wedge --help' for usage.\n";
+              << "slice, import, replay and view)\nRun 'wedge --help' for usage.\n";
     return kExitBadInput;
   }
 
@@ -78,6 +80,7 @@ int main(int argc, char** argv) {
     if (slice_cmd->parsed()) return run_slice(slice);
     if (import_cmd->parsed()) return run_import(import_options);
     if (replay_cmd->parsed()) return run_replay(replay);
+    if (view_cmd->parsed()) return run_view(view);
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
   } catch (const Interrupted& e) {

@@ -79,4 +79,14 @@ struct ReplayOptions {
 CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& options);
 int run_replay(const ReplayOptions& options);
 
+// wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--replay RECORDING...] [--frames N]
+//            [--screenshot FILE.png]
+struct ViewOptions {
+  std::string scene;
+  std::string w, size, subdivisions, frames, screenshot;
+  std::vector<std::string> replay;
+};
+CLI::App* add_view_verb(CLI::App& app, ViewOptions& options);
+int run_view(const ViewOptions& options);
+
 }  // namespace wedge::cli

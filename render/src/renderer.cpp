@@ -171,14 +171,17 @@ Renderer::~Renderer() {
   glDeleteProgram(impl_->grid_prog);
 }
 
-void Renderer::draw(const FrameDesc& frame, int width, int height) {
-  glViewport(0, 0, width, height);
+void Renderer::draw(const FrameDesc& frame, int width, int height, int x, int y) {
+  glViewport(x, y, width, height);
   glClearColor(frame.background[0], frame.background[1], frame.background[2], 1.0f);
   glClearDepth(1.0);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);  // slices are closed; drawing both sides also covers bodies cut by the near plane
+  glEnable(GL_SCISSOR_TEST);  // clear the viewport only (a window may have a panel beside it)
+  glScissor(x, y, width, height);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
 
   const Eigen::Matrix4f view_proj =
       (frame.camera.projection(double(width) / double(height)) * frame.camera.view()).cast<float>();

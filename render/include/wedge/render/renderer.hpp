@@ -56,8 +56,9 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Clears the bound framebuffer's viewport (0, 0, width, height) and draws the frame.
-  void draw(const FrameDesc& frame, int width, int height);
+  // Clears the bound framebuffer's viewport (x, y, width, height), pixels from the lower left, and draws the
+  // frame into it.
+  void draw(const FrameDesc& frame, int width, int height, int x = 0, int y = 0);
 
  private:
   struct Impl;

@@ -1,0 +1,343 @@
+// wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--replay RECORDING...]
+//                        [--frames N --screenshot FILE.png]
+//
+// The desktop viewer: a window (GLFW, OpenGL 3.3 core) drawing the scene's 3D slice with the same renderer
+// as `wedge render`, and a Dear ImGui panel: play, pause, single step, reset, time scale, the slice
+// offsets (w in 4D; two or three in 5D and 6D), the bodies and whether the slice meets them, and the
+// frame time split into physics, slicing and drawing. The camera orbits (right drag), pans (middle drag)
+// and zooms (wheel). The 3D view fills the window right of the panel. --replay drives the scene with recordings through the input layer, as `wedge
+// replay` does. Without a display: --frames N draws N frames (each 1/60 s of simulated time while
+// playing) and --screenshot writes the last one as PNG, for tests and pictures; with no display at all
+// the viewer exits with code 2, naming DISPLAY.
+//
+// Each frame draws the current state, then advances it, so frame 1 shows step 0: right of the panel, the
+// picture `wedge render --steps 0 --size (W-316)xH` draws.
+#include <CLI/CLI.hpp>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+
+#include "interrupt.hpp"
+#include "replay_input.hpp"
+#include "scene_frame.hpp"
+#include "scene_slices.hpp"
+#include "verbs.hpp"
+#include "wedge/render/png.hpp"
+#include "wedge/render/renderer.hpp"
+
+namespace wedge::cli {
+
+namespace {
+
+constexpr double kFrameTime = 1.0 / 60.0;  // s of simulated time per frame in --frames mode
+constexpr float kPanelWidth = 300.0f;      // px: the panel sits at the left edge, this wide
+constexpr int kViewLeft = 316;              // px: the 3D view starts right of the panel (and its margins)
+
+std::string g_glfw_error;  // GLFW's last error message (its callback cannot throw)
+
+// GLFW and a window with a current GL 3.3 core context, torn down in order.
+class Window {
+ public:
+  Window(const std::string& scene, int width, int height) {
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland))
+      throw Failure(scene + ": cannot open a window: DISPLAY is not set (no display to draw on; headless, run it "
+                            "under Xvfb: xvfb-run -a wedge view ...)");
+    glfwSetErrorCallback([](int, const char* message) { g_glfw_error = message; });
+    const std::string where = std::string("DISPLAY=") + (display ? display : "");
+    if (!glfwInit()) throw Failure(scene + ": cannot open a window on " + where + ": " + g_glfw_error);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    window_ = glfwCreateWindow(width, height, ("wedge view " + scene).c_str(), nullptr, nullptr);
+    if (!window_) {
+      glfwTerminate();
+      throw Failure(scene + ": cannot open an OpenGL 3.3 window on " + where + ": " + g_glfw_error);
+    }
+    glfwMakeContextCurrent(window_);
+  }
+  ~Window() {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+  }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  GLFWwindow* get() const { return window_; }
+
+ private:
+  GLFWwindow* window_ = nullptr;
+};
+
+// Dear ImGui over the window, torn down in order.
+class Gui {
+ public:
+  explicit Gui(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+  }
+  ~Gui() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  Gui(const Gui&) = delete;
+  Gui& operator=(const Gui&) = delete;
+};
+
+// An orbiting camera: the fitted camera's target and eye, turned about `up` (yaw) and the screen's right
+// axis (pitch), moved across the view (pan) and toward the target (zoom).
+struct Orbit {
+  render::Camera camera;
+  void rotate(double yaw, double pitch) {
+    Eigen::Vector3d offset = camera.eye - camera.target;
+    const Eigen::Vector3d right = offset.cross(camera.up).normalized();
+    offset = Eigen::AngleAxisd(-yaw, camera.up) * offset;
+    const Eigen::Vector3d turned = Eigen::AngleAxisd(pitch, right) * offset;
+    if (std::abs(turned.normalized().dot(camera.up)) < 0.98) offset = turned;  // not over the pole
+    camera.eye = camera.target + offset;
+  }
+  void pan(double dx, double dy) {
+    const Eigen::Vector3d offset = camera.eye - camera.target;
+    const Eigen::Vector3d right = camera.up.cross(offset).normalized(), up = offset.cross(right).normalized();
+    const Eigen::Vector3d move = offset.norm() * (-dx * right + dy * up);
+    camera.eye += move;
+    camera.target += move;
+  }
+  void zoom(double steps) { camera.eye = camera.target + (camera.eye - camera.target) * std::pow(0.9, steps); }
+};
+
+// Seconds per part of a frame, smoothed for display.
+struct FrameTimes {
+  double physics = 0, slicing = 0, drawing = 0;
+  void add(double p, double s, double d) {
+    const double a = 0.1;
+    physics += a * (p - physics);
+    slicing += a * (s - slicing);
+    drawing += a * (d - drawing);
+  }
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+template <int N>
+int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, int width, int height,
+         std::int64_t frames, int subdivisions) {
+  const std::string& file = o.scene;
+  if constexpr (N < 3) {
+    (void)doc, (void)w0, (void)width, (void)height, (void)frames, (void)subdivisions;
+    throw Failure(file + ": a 2D scene has no 3D slice to view (view needs a 3D..6D scene)");
+  } else {
+    const Scene<N> scene = load_scene<N>(doc, file);
+    const double h = scene.timestep;
+    World<N> world = scene.make_world(file);
+    std::unique_ptr<ReplayInput<N>> replay;  // (not std::optional: GCC 12 warns falsely about its reset)
+    if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file);
+    std::vector<double> w = w0;
+    w.resize(std::size_t(std::max(N - 3, 0)), 0.0);
+    slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file);
+    std::vector<slicing::DisplayMesh<3>> meshes;
+    slices.slice(world, meshes);
+    std::vector<Eigen::Vector3d> corners;
+    add_box_corners(meshes, corners);
+    // The camera is fitted to the view beside the panel, as `wedge render --size (W-316)xH` fits its picture.
+    const render::FrameDesc fitted = fitted_frame(scene, world, slices, corners, width - kViewLeft, height);
+    // The w sliders' range: every body's hidden coordinates, with room around them.
+    double reach = 1.0;
+    for (int i = 0; i < world.body_count(); ++i)
+      for (int a = 3; a < N; ++a) reach = std::max(reach, std::abs(world.body(BodyId{std::uint32_t(i)}).center[a]) + 1.0);
+
+    Window window(file, width, height);
+    render::Renderer renderer;  // needs the window's context
+    Gui gui(window.get());
+    Orbit orbit{fitted.camera};
+    bool playing = true;
+    float time_scale = 1.0f;
+    double pending = 0.0;  // s of simulated time owed to the clock
+    FrameTimes times;
+    std::vector<float> wf(w.begin(), w.end());
+    auto last = std::chrono::steady_clock::now();
+    double last_x = 0, last_y = 0;
+    glfwGetCursorPos(window.get(), &last_x, &last_y);
+
+    for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
+      throw_if_interrupted();
+      glfwPollEvents();
+      // Camera: right drag orbits, middle drag pans, the wheel zooms (unless the panel has the mouse).
+      double x = 0, y = 0;
+      glfwGetCursorPos(window.get(), &x, &y);
+      const ImGuiIO& io = ImGui::GetIO();
+      if (!io.WantCaptureMouse) {
+        if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+          orbit.rotate((x - last_x) * 0.005, (y - last_y) * 0.005);
+        if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
+          orbit.pan((x - last_x) / height, (y - last_y) / height);
+        if (io.MouseWheel != 0.0f) orbit.zoom(io.MouseWheel);
+      }
+      last_x = x, last_y = y;
+
+      // Slice and draw the current state.
+      int fb_width = 0, fb_height = 0;
+      glfwGetFramebufferSize(window.get(), &fb_width, &fb_height);
+      auto t0 = std::chrono::steady_clock::now();
+      slices.slice(world, meshes);
+      const double slicing_time = seconds_since(t0);
+      t0 = std::chrono::steady_clock::now();
+      render::FrameDesc desc = fitted;
+      desc.camera = orbit.camera;
+      int in_slice = 0;
+      for (std::size_t k = 0; k < meshes.size(); ++k) {
+        const SceneBody<N>& sb = scene.bodies[std::size_t(slices.entries()[k].body)];
+        render::Color color = render::palette_color(int(k));
+        if (sb.color) color = {float((*sb.color)[0]), float((*sb.color)[1]), float((*sb.color)[2])};
+        desc.meshes.push_back({&meshes[k], color});
+        in_slice += !meshes[k].empty();
+      }
+      glViewport(0, 0, fb_width, fb_height);
+      glClearColor(desc.background[0], desc.background[1], desc.background[2], 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+      const int left = std::min(kViewLeft * fb_width / width, fb_width - 1);  // (framebuffer px may differ)
+      renderer.draw(desc, fb_width - left, fb_height, left, 0);
+
+      // The panel.
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+      ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(fb_height) - 16), ImGuiCond_Always);
+      ImGui::Begin("Wedge", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+      ImGui::TextWrapped("%s (%dD)", file.c_str(), N);
+      ImGui::Text("t = %.3f s, step %lld", world.time(), (long long)world.step_count());
+      if (ImGui::Button(playing ? "Pause" : "Play")) playing = !playing;
+      ImGui::SameLine();
+      const bool single = ImGui::Button("Step");
+      ImGui::SameLine();
+      const bool reset = ImGui::Button("Reset");
+      ImGui::SliderFloat("time scale", &time_scale, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+      bool moved = false;
+      for (std::size_t i = 0; i < wf.size(); ++i) {  // offsets: x_{n-1} first, then x_{n-2} within it
+        const int axis = N - 1 - int(i);
+        static const char* const kLabels[] = {"x3", "x4", "x5"};
+        moved |= ImGui::SliderFloat(N == 4 ? "w" : kLabels[axis - 3], &wf[i], float(-reach), float(reach), "%.3f m");
+      }
+      ImGui::Separator();
+      ImGui::Text("%d of %d bodies in the slice", in_slice, int(meshes.size()));
+      for (std::size_t k = 0; k < meshes.size(); ++k)
+        ImGui::BulletText("%s%s", world.name(BodyId{std::uint32_t(slices.entries()[k].body)}).c_str(),
+                          meshes[k].empty() ? "  (out of the slice)" : "");
+      ImGui::Separator();
+      ImGui::Text("physics %.2f ms", 1e3 * times.physics);
+      ImGui::Text("slicing %.2f ms", 1e3 * times.slicing);
+      ImGui::Text("drawing %.2f ms", 1e3 * times.drawing);
+      ImGui::TextWrapped("Right drag: orbit. Middle drag: pan. Wheel: zoom.");
+      ImGui::End();
+      ImGui::Render();
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      const double drawing_time = seconds_since(t0);
+
+      if (frames > 0 && frame == frames) {
+        if (!o.screenshot.empty()) {
+          std::vector<std::uint8_t> rgba(std::size_t(fb_width) * std::size_t(fb_height) * 4), flipped(rgba.size());
+          glReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+          const std::size_t row = std::size_t(fb_width) * 4;
+          for (int r = 0; r < fb_height; ++r)  // GL's rows run bottom up
+            std::copy_n(&rgba[std::size_t(fb_height - 1 - r) * row], row, &flipped[std::size_t(r) * row]);
+          try {
+            render::write_png(o.screenshot, flipped, fb_width, fb_height);
+          } catch (const Error& e) {
+            throw Failure(e.what());
+          }
+        }
+        break;
+      }
+      glfwSwapBuffers(window.get());
+
+      // Advance: the clock's time (scaled) while playing, one step on request; input from recordings.
+      t0 = std::chrono::steady_clock::now();
+      const double elapsed = std::min(seconds_since(last), 0.1);
+      last = std::chrono::steady_clock::now();
+      if (moved) {
+        for (std::size_t i = 0; i < wf.size(); ++i) w[i] = wf[i];
+        slices.set_offsets(w);
+      }
+      if (reset) {
+        world = scene.make_world(file);
+        replay.reset();
+        if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file);
+        pending = 0.0;
+      }
+      if (playing) pending += (frames > 0 ? kFrameTime : elapsed) * time_scale;
+      int steps = single ? 1 : 0;
+      for (; pending >= h && steps < 64; pending -= h) ++steps;
+      if (steps == 64) pending = 0.0;  // too slow to keep up: drop the debt rather than spiral
+      for (int s = 0; s < steps; ++s) {
+        if (replay)
+          replay->step(world, world.step_count(), h, file);
+        else
+          checked_step(world, h, file);
+      }
+      times.add(seconds_since(t0), slicing_time, drawing_time);
+    }
+    return kExitOk;
+  }
+}
+
+}  // namespace
+
+CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "view", "Open a window on the scene's 3D slice: play, pause, step, move the slice along w, orbit the camera.");
+  cmd->add_option("scene", o.scene, "Scene file (JSON, docs/scene-format.md)")->required()->type_name("SCENE.json");
+  cmd->add_option("--w", o.w, "Slice offsets: W in 4D, W1,W2 in 5D, three in 6D (default 0)")->type_name("W");
+  cmd->add_option("--size", o.size, "Window size in pixels (default 1280x720)")->type_name("WxH");
+  cmd->add_option("--subdivisions", o.subdivisions, "Tessellation of round shapes (default by dimension)")
+      ->type_name("S");
+  cmd->add_option("--replay", o.replay, "Recordings that drive the scene through the input layer")
+      ->type_name("RECORDING...")
+      ->expected(1, -1);
+  cmd->add_option("--frames", o.frames, "Draw N frames (1/60 s of simulated time each) and exit")->type_name("N");
+  cmd->add_option("--screenshot", o.screenshot, "With --frames: write the last frame to FILE.png")
+      ->type_name("FILE.png");
+  cmd->footer(kExitCodesText);
+  return cmd;
+}
+
+int run_view(const ViewOptions& o) {
+  std::int64_t frames = 0;
+  if (!o.frames.empty() && (!parse_int64(o.frames, frames) || frames < 1))
+    throw Failure(o.scene + ": --frames must be an integer >= 1 (got '" + o.frames + "')");
+  if (!o.screenshot.empty() && frames == 0)
+    throw Failure(o.scene + ": --screenshot needs --frames N (the screenshot is of frame N)");
+  const Json doc = read_json_file(o.scene);
+  const int n = read_dim(doc, o.scene);
+  const std::vector<double> w = parse_slice_offsets(o.scene, o.w, n);
+  const int subdivisions = parse_subdivisions(o.scene, o.subdivisions, n);
+  int width = 1280, height = 720;
+  if (!o.size.empty()) {
+    const std::size_t x = o.size.find('x');
+    std::int64_t a = 0, b = 0;
+    if (x == std::string::npos || !parse_int64(o.size.substr(0, x), a) || !parse_int64(o.size.substr(x + 1), b) ||
+        a < 480 || b < 240 || a > 8192 || b > 8192)
+      throw Failure(o.scene + ": --size must be WIDTHxHEIGHT, at least 480x240 (room for the panel) and at most "
+                              "8192x8192 pixels (got '" + o.size + "')");
+    width = int(a), height = int(b);
+  }
+  return with_dim(n, [&](auto dim) { return view<decltype(dim)::value>(doc, o, w, width, height, frames, subdivisions); });
+}
+
+}  // namespace wedge::cli

@@ -1,0 +1,98 @@
+// `wedge view` run as a user would, headless under Xvfb (Debian's xvfb; Mesa's software GL): the window's
+// screenshot against the offscreen renderer's picture of the same slice (`wedge render --steps 0`, the
+// same camera fit and size), body by body, outside the panel; --w choosing which bodies are drawn as the
+// slicer predicts; and no display: exit 2 naming DISPLAY, nothing written.
+#include <png.h>
+
+#include <catch2/catch.hpp>
+#include <array>
+#include <string>
+
+#include "cli_runner.hpp"
+
+using namespace cli_runner;
+
+namespace {
+
+// Three tesseracts of side 1 in pure red, green and blue along x; the blue one at w = `blue_w`.
+std::string scene(double blue_w) {
+  return R"({"dim": 4, "bodies": [
+    {"name": "r", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [-1.5, 0, 0, 0], "color": [1, 0, 0]},
+    {"name": "g", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [0, 0, 0, 0], "color": [0, 1, 0]},
+    {"name": "b", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [1.5, 0, 0, )" +
+         std::to_string(blue_w) + R"(], "color": [0, 0, 1]}]})";
+}
+
+// Pixels where one channel dominates (a lit body of that pure colour), counted from column from_x on.
+std::array<long, 3> coverage(const fs::path& file, int from_x) {
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
+  img.format = PNG_FORMAT_RGB;
+  std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(img));
+  REQUIRE(png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr) != 0);
+  std::array<long, 3> count{};
+  for (std::uint32_t y = 0; y < img.height; ++y)
+    for (std::uint32_t x = std::uint32_t(from_x); x < img.width; ++x) {
+      const std::uint8_t* p = &rgb[3 * (std::size_t(y) * img.width + x)];
+      for (int c = 0; c < 3; ++c)
+        if (p[c] > 2 * p[(c + 1) % 3] + 30 && p[c] > 2 * p[(c + 2) % 3] + 30) ++count[std::size_t(c)];
+    }
+  return count;
+}
+
+// Runs `wedge ARGS` with DISPLAY set to a fresh Xvfb server (the server picks a free display number).
+Result under_xvfb(const TempDir& dir, const std::string& args) {
+  return dir.shell("rm -f display; Xvfb -displayfd 5 -screen 0 1400x900x24 -nolisten tcp 5>display 2>/dev/null & x=$!; "
+                   "i=0; while [ ! -s display ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i+1)); done; "
+                   "DISPLAY=:$(cat display) \"$WEDGE\" " + args + "; rc=$?; kill $x; exit $rc");
+}
+
+}  // namespace
+
+TEST_CASE("wedge view: the window shows what the offscreen renderer shows", "[cli][view]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));
+  const Result v = under_xvfb(dir, "view s.json --frames 1 --screenshot shot.png --size 800x450");
+  INFO(v.err);
+  REQUIRE(v.code == 0);
+  // The 3D view is the window right of the panel, x >= 316 px: 484 x 450, which `render` draws alike.
+  const Result r = dir.run("render s.json --steps 0 --out frames --size 484x450");
+  REQUIRE(r.code == 0);
+  // Same camera fit, same size, the same renderer on Mesa's software rasteriser: the counts agree to 1%.
+  const std::array<long, 3> shot = coverage(dir.path() / "shot.png", 316);
+  const std::array<long, 3> offscreen = coverage(dir.path() / "frames" / "frame_00000.png", 0);
+  for (int c = 0; c < 3; ++c) {
+    INFO("colour " << c << ": window " << shot[std::size_t(c)] << " px, offscreen " << offscreen[std::size_t(c)] << " px");
+    CHECK(offscreen[std::size_t(c)] > 500);
+    CHECK(std::abs(shot[std::size_t(c)] - offscreen[std::size_t(c)]) <= offscreen[std::size_t(c)] / 100 + 5);
+  }
+}
+
+TEST_CASE("wedge view: --w draws the bodies the slice meets", "[cli][view]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.8));  // blue at w = 0.8: beyond its half size from w = 0
+  const Result at0 = under_xvfb(dir, "view s.json --frames 1 --screenshot a.png --size 800x450");
+  const Result at8 = under_xvfb(dir, "view s.json --w 0.8 --frames 1 --screenshot b.png --size 800x450");
+  REQUIRE(at0.code == 0);
+  REQUIRE(at8.code == 0);
+  const std::array<long, 3> a = coverage(dir.path() / "a.png", 316), b = coverage(dir.path() / "b.png", 316);
+  CHECK(a[2] == 0);    // w = 0: red and green, no blue
+  CHECK(a[0] > 500);
+  CHECK(b[0] == 0);    // w = 0.8: only blue (|0 - 0.8| > 0.5 for red and green)
+  CHECK(b[1] == 0);
+  CHECK(b[2] > 500);
+}
+
+TEST_CASE("wedge view: without a display it exits 2 naming DISPLAY", "[cli][view]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));
+  const Result r = dir.shell("unset DISPLAY WAYLAND_DISPLAY; \"$WEDGE\" view s.json --frames 1 --screenshot x.png");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("DISPLAY") != std::string::npos);
+  CHECK(r.err.find("s.json") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path() / "x.png"));
+  const Result no_frames = dir.run("view s.json --screenshot x.png");
+  CHECK(no_frames.code == 2);
+  CHECK(no_frames.err.find("--frames") != std::string::npos);
+}
