@@ -11,11 +11,16 @@
 namespace wedge::slicing {
 
 template <int N>
-WorldSlices<N>::WorldSlices(const World<N>& world, const std::vector<double>& w, int subdivisions) {
+void WorldSlices<N>::set_offsets(const std::vector<double>& w) {
   std::array<double, std::size_t(N - 3)> offsets{};
   for (std::size_t i = 0; i < w.size() && i < offsets.size(); ++i) offsets[i] = w[i];
   chain_ = SliceChain<N>::axes(offsets);
   flat_ = chain_.flat();
+}
+
+template <int N>
+WorldSlices<N>::WorldSlices(const World<N>& world, const std::vector<double>& w, int subdivisions) {
+  set_offsets(w);
   for (int i = 0; i < world.body_count(); ++i) {
     const BodyId id{std::uint32_t(i)};
     const Shape<N>* shape = world.shape(id);

@@ -27,6 +27,9 @@ class WorldSlices {
   // round shapes. Throws wedge::Error "bodies[i].shape: ..." for a shape that cannot be tessellated.
   WorldSlices(const World<N>& world, const std::vector<double>& offsets, int subdivisions);
 
+  // Moves the slice (same meaning as the constructor's offsets); the prepared meshes are kept.
+  void set_offsets(const std::vector<double>& offsets);
+
   const std::vector<Entry>& entries() const { return entries_; }
   const Flat3<N>& flat() const { return flat_; }
   const SliceChain<N>& chain() const { return chain_; }
