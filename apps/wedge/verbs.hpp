@@ -83,7 +83,7 @@ int run_replay(const ReplayOptions& options);
 //            [--screenshot FILE.png]
 struct ViewOptions {
   std::string scene;
-  std::string w, size, subdivisions, frames, screenshot;
+  std::string w, size, subdivisions, frames, screenshot, mouse;
   std::vector<std::string> replay;
 };
 CLI::App* add_view_verb(CLI::App& app, ViewOptions& options);

@@ -20,6 +20,7 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
+#include <fstream>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -32,6 +33,7 @@
 #include "verbs.hpp"
 #include "wedge/render/png.hpp"
 #include "wedge/render/renderer.hpp"
+#include "wedge/slicing/pick.hpp"
 
 namespace wedge::cli {
 
@@ -135,6 +137,64 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The mouse as the viewer sees it in one frame: window pixels, buttons, modifier, wheel. From GLFW, or
+// from a --mouse script (JSON Lines {"frame", "x", "y", "left", "right", "shift", "wheel"}, each line
+// holding from its frame on; injected events for tests and demos).
+struct MouseState {
+  double x = 0, y = 0;
+  bool left = false, right = false, middle = false, shift = false;
+  double wheel = 0;
+};
+
+std::vector<std::pair<std::int64_t, MouseState>> read_mouse_script(const std::string& path) {
+  std::vector<std::pair<std::int64_t, MouseState>> script;
+  std::ifstream in(path);
+  if (!in) throw Failure(path + ": cannot open the mouse script");
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    if (text.empty()) continue;
+    try {
+      const Json j = Json::parse(text);
+      MouseState m;
+      m.x = j.at("x").get<double>();
+      m.y = j.at("y").get<double>();
+      m.left = j.value("left", false);
+      m.right = j.value("right", false);
+      m.shift = j.value("shift", false);
+      m.wheel = j.value("wheel", 0.0);
+      const std::int64_t frame = j.at("frame").get<std::int64_t>();
+      if (!script.empty() && frame <= script.back().first) throw Failure("frames must increase");
+      script.emplace_back(frame, m);
+    } catch (const std::exception& e) {
+      throw Failure(path + ":" + std::to_string(line) + ": " + e.what());
+    }
+  }
+  return script;
+}
+
+// The mouse as a hand: a left press on a body grabs it at the point under the cursor (picked on the
+// slice meshes); dragging moves that point in the plane facing the camera, the wheel moves it in depth;
+// a right drag turns the hand (with Shift: in planes with w, the input layer's 4D mode); releasing
+// throws. The hand lives in tracking space = slice coordinates (the tracking origin is the slice's).
+struct MouseHand {
+  bool holding = false;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // slice coordinates
+  double depth = 0.0;                               // m along the camera's forward axis
+  Eigen::Quaterniond turn = Eigen::Quaterniond::Identity();
+  bool mode4d = false;
+  bool ever = false;  // tracked since the first press
+};
+
+// The ray through window pixel (x, y) of a view whose left edge is at `left` px, width x height px.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const render::Camera& camera, double x, double y, int left,
+                                                       int width, int height) {
+  const Eigen::Matrix4d inv = (camera.projection(double(width) / height) * camera.view()).inverse();
+  const double nx = 2.0 * (x - left) / width - 1.0, ny = 1.0 - 2.0 * y / height;
+  Eigen::Vector4d a = inv * Eigen::Vector4d(nx, ny, -1.0, 1.0), b = inv * Eigen::Vector4d(nx, ny, 1.0, 1.0);
+  const Eigen::Vector3d near = a.head<3>() / a[3], far = b.head<3>() / b[3];
+  return {near, (far - near).normalized()};
+}
+
 template <int N>
 int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, int width, int height,
          std::int64_t frames, int subdivisions) {
@@ -174,22 +234,75 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     auto last = std::chrono::steady_clock::now();
     double last_x = 0, last_y = 0;
     glfwGetCursorPos(window.get(), &last_x, &last_y);
+    const auto script = o.mouse.empty() ? std::vector<std::pair<std::int64_t, MouseState>>{} : read_mouse_script(o.mouse);
+    std::size_t script_next = 0;
+    MouseState scripted;
+    bool was_left = false;
+    MouseHand hand;
+    // Without recordings the mouse is the right hand of an input layer of its own; tracking space is the
+    // slice (origin: the slice's hidden offsets).
+    auto mouse_layer = [&] {
+      input::InteractionSettings<N> settings = interaction_settings(scene);
+      settings.tracking.origin = slices.flat().origin;
+      settings.tracking.scale = 1.0;
+      return std::make_unique<input::Interaction<N>>(world, settings);
+    };
+    std::unique_ptr<input::Interaction<N>> mouse_in;
+    if (!replay) mouse_in = mouse_layer();
+    std::vector<std::string> pulse_log;
 
     for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
       throw_if_interrupted();
       glfwPollEvents();
-      // Camera: right drag orbits, middle drag pans, the wheel zooms (unless the panel has the mouse).
-      double x = 0, y = 0;
-      glfwGetCursorPos(window.get(), &x, &y);
+      // The mouse: GLFW's, or the script's when there is one.
+      MouseState mouse;
       const ImGuiIO& io = ImGui::GetIO();
-      if (!io.WantCaptureMouse) {
-        if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
-          orbit.rotate((x - last_x) * 0.005, (y - last_y) * 0.005);
-        if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
-          orbit.pan((x - last_x) / height, (y - last_y) / height);
-        if (io.MouseWheel != 0.0f) orbit.zoom(io.MouseWheel);
+      if (!script.empty()) {
+        while (script_next < script.size() && script[script_next].first <= frame) scripted = script[script_next++].second;
+        mouse = scripted;
+        scripted.wheel = 0;  // (a wheel step happens once)
+      } else if (!io.WantCaptureMouse) {
+        glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
+        mouse.left = glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        mouse.right = glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        mouse.middle = glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+        mouse.shift = glfwGetKey(window.get(), GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                      glfwGetKey(window.get(), GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+        mouse.wheel = io.MouseWheel;
+      } else {
+        glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
       }
-      last_x = x, last_y = y;
+      const double dx = mouse.x - last_x, dy = mouse.y - last_y;
+      const Eigen::Vector3d forward = (orbit.camera.target - orbit.camera.eye).normalized();
+      const Eigen::Vector3d cam_right = forward.cross(orbit.camera.up).normalized();
+      const Eigen::Vector3d cam_up = cam_right.cross(forward);
+      if (mouse_in) {
+        const auto ray = cursor_ray(orbit.camera, mouse.x, mouse.y, kViewLeft, width - kViewLeft, height);
+        if (mouse.left && !was_left) {  // press: grab what is under the cursor
+          slices.slice(world, meshes);
+          if (const auto hit = slicing::pick(meshes, ray.first, ray.second)) {
+            hand.holding = hand.ever = true;
+            hand.point = hit->point;
+            hand.depth = (hit->point - orbit.camera.eye).dot(forward);
+          }
+        } else if (mouse.left && hand.holding) {  // drag in the plane facing the camera; the wheel: depth
+          hand.depth *= std::pow(1.1, -mouse.wheel);
+          const double along = ray.second.dot(forward);
+          if (along > 1e-6) hand.point = ray.first + ray.second * ((hand.depth - (ray.first - orbit.camera.eye).dot(forward)) / along);
+          if (mouse.right)  // turn the hand about the camera's axes
+            hand.turn = Eigen::AngleAxisd(dx * 0.01, cam_up) * Eigen::AngleAxisd(dy * 0.01, cam_right) * hand.turn;
+        } else if (!mouse.left) {
+          hand.holding = false;
+        }
+        hand.mode4d = mouse.shift;
+      }
+      was_left = mouse.left;
+      if (!hand.holding) {  // the camera: right drag orbits, middle drag pans, the wheel zooms
+        if (mouse.right) orbit.rotate(dx * 0.005, dy * 0.005);
+        if (mouse.middle) orbit.pan(dx / height, dy / height);
+        if (mouse.wheel != 0.0) orbit.zoom(mouse.wheel);
+      }
+      last_x = mouse.x, last_y = mouse.y;
 
       // Slice and draw the current state.
       int fb_width = 0, fb_height = 0;
@@ -244,7 +357,12 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       ImGui::Text("physics %.2f ms", 1e3 * times.physics);
       ImGui::Text("slicing %.2f ms", 1e3 * times.slicing);
       ImGui::Text("drawing %.2f ms", 1e3 * times.drawing);
-      ImGui::TextWrapped("Right drag: orbit. Middle drag: pan. Wheel: zoom.");
+      ImGui::TextWrapped("Left drag on a body: grab and move it (wheel: depth; right drag: turn it, with Shift into "
+                         "w). Release throws. Right drag: orbit. Middle drag: pan. Wheel: zoom.");
+      ImGui::Separator();
+      ImGui::Text("haptic pulses (a mouse cannot feel them):");
+      for (std::size_t i = pulse_log.size() > 8 ? pulse_log.size() - 8 : 0; i < pulse_log.size(); ++i)
+        ImGui::TextUnformatted(pulse_log[i].c_str());
       ImGui::End();
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -274,11 +392,15 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (moved) {
         for (std::size_t i = 0; i < wf.size(); ++i) w[i] = wf[i];
         slices.set_offsets(w);
+        if (mouse_in && !hand.holding) mouse_in = mouse_layer();  // the hand moves with the slice
       }
       if (reset) {
         world = scene.make_world(file);
         replay.reset();
         if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file);
+        mouse_in.reset();
+        if (!replay) mouse_in = mouse_layer();
+        hand = MouseHand{};
         pending = 0.0;
       }
       if (playing) pending += (frames > 0 ? kFrameTime : elapsed) * time_scale;
@@ -286,10 +408,27 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       for (; pending >= h && steps < 64; pending -= h) ++steps;
       if (steps == 64) pending = 0.0;  // too slow to keep up: drop the debt rather than spiral
       for (int s = 0; s < steps; ++s) {
-        if (replay)
+        if (replay) {
           replay->step(world, world.step_count(), h, file);
-        else
-          checked_step(world, h, file);
+          continue;
+        }
+        input::InputFrame input_frame;
+        input_frame.t = double(world.step_count()) * h;
+        input::HandInput& right = input_frame.hands[1];
+        right.tracked = hand.ever;
+        right.position = hand.point;
+        right.orientation = hand.turn;
+        right.squeeze = hand.holding ? 1.0 : 0.0;
+        right.mode4d = hand.mode4d;
+        mouse_in->before_step(input_frame, h);
+        checked_step(world, h, file);
+        mouse_in->after_step();
+        for (const input::HapticPulse<N>& p : mouse_in->pulses()) {
+          char line[160];
+          std::snprintf(line, sizeof line, "t %.2f s: %s on %s, %.2f", p.t, world.name(p.held).c_str(),
+                        world.name(p.other).c_str(), p.amplitude);
+          pulse_log.emplace_back(line);
+        }
       }
       times.add(seconds_since(t0), slicing_time, drawing_time);
     }
@@ -310,6 +449,10 @@ CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--replay", o.replay, "Recordings that drive the scene through the input layer")
       ->type_name("RECORDING...")
       ->expected(1, -1);
+  cmd->add_option("--mouse", o.mouse,
+                  "Play mouse events from FILE (JSON Lines {\"frame\", \"x\", \"y\", \"left\", \"right\", \"shift\", "
+                  "\"wheel\"}) instead of the real mouse")
+      ->type_name("FILE");
   cmd->add_option("--frames", o.frames, "Draw N frames (1/60 s of simulated time each) and exit")->type_name("N");
   cmd->add_option("--screenshot", o.screenshot, "With --frames: write the last frame to FILE.png")
       ->type_name("FILE.png");
