@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 #include <array>
+#include <cstdio>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -151,4 +152,42 @@ TEST_CASE("wedge view: a scripted mouse grabs a body, drags it and throws it", "
   // Nobody touched the green one.
   CHECK(std::abs(green41.count - green.count) <= green.count / 100);
   CHECK(std::abs(green41.x - green.x) < 0.5);
+}
+
+TEST_CASE("wedge view --record: a mouse session replays bit for bit with wedge replay", "[cli][view][replay]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));
+  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
+  REQUIRE(first.code == 0);
+  const Blob red = blob(dir.path() / "f1.png", 0);
+  REQUIRE(red.count > 500);
+  // Grab the red tesseract, drag it up and to the right with a turn (right button), let go.
+  std::string script;
+  for (int f = 2; f <= 30; ++f)
+    script += "{\"frame\":" + std::to_string(f) + ",\"x\":" + std::to_string(red.x + 2.0 * (f - 2)) + ",\"y\":" +
+              std::to_string(red.y - 2.0 * (f - 2)) + ",\"left\":true,\"right\":" + (f > 15 ? "true" : "false") +
+              "}\n";
+  script += "{\"frame\":31,\"x\":" + std::to_string(red.x + 60) + ",\"y\":" + std::to_string(red.y - 58) + "}\n";
+  dir.write("drag.jsonl", script);
+  const Result v = under_xvfb(dir, "view s.json --mouse drag.jsonl --frames 50 --record session.jsonl --hash --size 800x450");
+  INFO(v.err);
+  REQUIRE(v.code == 0);
+  // "98 steps; state hash H": 49 frames advanced, two steps of 1/120 s each.
+  const std::size_t at = v.out.find(" steps; state hash ");
+  REQUIRE(at != std::string::npos);
+  const long steps = std::stol(v.out.substr(0, at));
+  const std::string hash = v.out.substr(at + 19, 16);
+  CHECK(steps == 98);
+  char until[32];  // (all the digits: --until T runs ceil(T / h) steps)
+  std::snprintf(until, sizeof until, "%.17g", double(steps) / 120.0);
+  const Result r = dir.run(std::string("replay s.json session.jsonl --until ") + until +
+                           " --every 1000000 --hash --events events.jsonl");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.lines().back()["state_hash"].get<std::string>() == hash);
+  // What happened, read back: one grab of the red tesseract, one release, and it moved.
+  const std::string events = read_file(dir.path() / "events.jsonl");
+  CHECK(events.find("\"type\":\"grab\"") != std::string::npos);
+  CHECK(events.find("\"body\":\"r\"") != std::string::npos);
+  CHECK(events.find("\"type\":\"release\"") != std::string::npos);
 }

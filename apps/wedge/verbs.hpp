@@ -83,8 +83,9 @@ int run_replay(const ReplayOptions& options);
 //            [--screenshot FILE.png]
 struct ViewOptions {
   std::string scene;
-  std::string w, size, subdivisions, frames, screenshot, mouse;
+  std::string w, size, subdivisions, frames, screenshot, mouse, record;
   std::vector<std::string> replay;
+  bool hash = false;
 };
 CLI::App* add_view_verb(CLI::App& app, ViewOptions& options);
 int run_view(const ViewOptions& options);

@@ -241,12 +241,25 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     MouseHand hand;
     // Without recordings the mouse is the right hand of an input layer of its own; tracking space is the
     // slice (origin: the slice's hidden offsets).
+    // The scene's tracking space, with its hidden coordinates moved to the viewed slice (unless recording:
+    // a recording has no slice offsets, so then the hand stays in the scene's own slice and its samples
+    // mean the same to `wedge replay`).
+    const bool recording = !o.record.empty();
     auto mouse_layer = [&] {
       input::InteractionSettings<N> settings = interaction_settings(scene);
-      settings.tracking.origin = slices.flat().origin;
-      settings.tracking.scale = 1.0;
+      if (!recording)
+        for (int a = 3; a < N; ++a) settings.tracking.origin[a] = slices.flat().origin[a];
       return std::make_unique<input::Interaction<N>>(world, settings);
     };
+    // Slice coordinates of the hand -> tracking coordinates of the scene's interaction.
+    auto to_tracking = [&](const Eigen::Vector3d& p) {
+      Eigen::Vector3d t = p;
+      for (int a = 0; a < std::min(N, 3); ++a)
+        t[a] = (slices.flat().origin[a] + p[a] - scene.interaction.origin[a]) / scene.interaction.scale;
+      return t;
+    };
+    recordings::Recording record;
+    record.source = "viewer";
     std::unique_ptr<input::Interaction<N>> mouse_in;
     if (!replay) mouse_in = mouse_layer();
     std::vector<std::string> pulse_log;
@@ -290,7 +303,8 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
           const double along = ray.second.dot(forward);
           if (along > 1e-6) hand.point = ray.first + ray.second * ((hand.depth - (ray.first - orbit.camera.eye).dot(forward)) / along);
           if (mouse.right)  // turn the hand about the camera's axes
-            hand.turn = Eigen::AngleAxisd(dx * 0.01, cam_up) * Eigen::AngleAxisd(dy * 0.01, cam_right) * hand.turn;
+            hand.turn = (Eigen::AngleAxisd(dx * 0.01, cam_up) * Eigen::AngleAxisd(dy * 0.01, cam_right) * hand.turn)
+                            .normalized();  // (unit to round-off, as a recording reads it back)
         } else if (!mouse.left) {
           hand.holding = false;
         }
@@ -392,7 +406,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (moved) {
         for (std::size_t i = 0; i < wf.size(); ++i) w[i] = wf[i];
         slices.set_offsets(w);
-        if (mouse_in && !hand.holding) mouse_in = mouse_layer();  // the hand moves with the slice
+        if (mouse_in && !hand.holding && !recording) mouse_in = mouse_layer();  // the hand moves with the slice
       }
       if (reset) {
         world = scene.make_world(file);
@@ -401,6 +415,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         mouse_in.reset();
         if (!replay) mouse_in = mouse_layer();
         hand = MouseHand{};
+        record.hands.clear();  // a recording starts with the world it replays into
         pending = 0.0;
       }
       if (playing) pending += (frames > 0 ? kFrameTime : elapsed) * time_scale;
@@ -416,10 +431,20 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         input_frame.t = double(world.step_count()) * h;
         input::HandInput& right = input_frame.hands[1];
         right.tracked = hand.ever;
-        right.position = hand.point;
+        right.position = to_tracking(hand.point);
         right.orientation = hand.turn;
         right.squeeze = hand.holding ? 1.0 : 0.0;
         right.mode4d = hand.mode4d;
+        if (recording && right.tracked) {  // one sample per step, at its time: replay reads it back exactly
+          recordings::HandSample sample;
+          sample.t = input_frame.t;
+          sample.hand = recordings::Hand::Right;
+          sample.pose.position = right.position;
+          sample.pose.orientation = right.orientation;
+          sample.squeeze = right.squeeze;
+          sample.mode4d = right.mode4d;
+          record.hands.push_back(sample);
+        }
         mouse_in->before_step(input_frame, h);
         checked_step(world, h, file);
         mouse_in->after_step();
@@ -432,6 +457,16 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       }
       times.add(seconds_since(t0), slicing_time, drawing_time);
     }
+    if (recording) {
+      try {
+        recordings::write_recording(o.record, record);
+      } catch (const Error& e) {
+        throw Failure(e.what());
+      }
+    }
+    if (o.hash)
+      std::printf("%lld steps; state hash %016llx\n", (long long)world.step_count(),
+                  (unsigned long long)world.state_hash());
     return kExitOk;
   }
 }
@@ -453,6 +488,11 @@ CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
                   "Play mouse events from FILE (JSON Lines {\"frame\", \"x\", \"y\", \"left\", \"right\", \"shift\", "
                   "\"wheel\"}) instead of the real mouse")
       ->type_name("FILE");
+  cmd->add_option("--record", o.record,
+                  "Record the mouse hand to FILE (docs/recording-format.md) on exit; `wedge replay SCENE FILE` "
+                  "gives the same state")
+      ->type_name("FILE");
+  cmd->add_flag("--hash", o.hash, "On exit print the number of steps and the final state hash");
   cmd->add_option("--frames", o.frames, "Draw N frames (1/60 s of simulated time each) and exit")->type_name("N");
   cmd->add_option("--screenshot", o.screenshot, "With --frames: write the last frame to FILE.png")
       ->type_name("FILE.png");
@@ -464,6 +504,8 @@ int run_view(const ViewOptions& o) {
   std::int64_t frames = 0;
   if (!o.frames.empty() && (!parse_int64(o.frames, frames) || frames < 1))
     throw Failure(o.scene + ": --frames must be an integer >= 1 (got '" + o.frames + "')");
+  if (!o.record.empty() && !o.replay.empty())
+    throw Failure(o.scene + ": --record records the mouse, which --replay replaces: give one of them");
   if (!o.screenshot.empty() && frames == 0)
     throw Failure(o.scene + ": --screenshot needs --frames N (the screenshot is of frame N)");
   const Json doc = read_json_file(o.scene);
