@@ -17,7 +17,7 @@ void frame(benchmark::State& state, const char* name) {
   const std::string file = std::string(WEDGE_SOURCE_DIR) + "/scenes/" + name;
   const cli::Scene<N> scene = cli::load_scene_file<N>(file);
   World<N> world = scene.make_world(file);
-  slicing::WorldSlices<N> slices(world, {}, N == 4 ? 8 : 16);  // the viewer's default tessellation
+  slicing::WorldSlices<N> slices(world, {}, int(state.range(0)));  // subdivisions: 8 is the viewer default in 4D  // the viewer's default tessellation
   std::vector<slicing::DisplayMesh<3>> meshes;
   const double h = scene.timestep;
   const int steps = std::max(1, int(std::lround((1.0 / 60.0) / h)));
@@ -47,10 +47,10 @@ void frame4(benchmark::State& state, const char* name) { frame<4>(state, name); 
 
 }  // namespace
 
-BENCHMARK_CAPTURE(frame4, toy_table_4d, "toy_table_4d.json")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(frame4, fig1_stack_4d, "fig1_stack_4d.json")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(frame4, fig2_duocylinder_4d, "fig2_duocylinder_4d.json")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(frame4, fig3_dominoes_4d, "fig3_dominoes_4d.json")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(frame4, fig4_spinning_4d, "fig4_spinning_4d.json")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(frame4, toy_table_4d, "toy_table_4d.json")->Arg(8)->Arg(5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(frame4, fig1_stack_4d, "fig1_stack_4d.json")->Arg(8)->Arg(5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(frame4, fig2_duocylinder_4d, "fig2_duocylinder_4d.json")->Arg(8)->Arg(5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(frame4, fig3_dominoes_4d, "fig3_dominoes_4d.json")->Arg(8)->Arg(5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(frame4, fig4_spinning_4d, "fig4_spinning_4d.json")->Arg(8)->Arg(5)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
