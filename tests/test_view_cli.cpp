@@ -191,3 +191,37 @@ TEST_CASE("wedge view --record: a mouse session replays bit for bit with wedge r
   CHECK(events.find("\"body\":\"r\"") != std::string::npos);
   CHECK(events.find("\"type\":\"release\"") != std::string::npos);
 }
+
+TEST_CASE("wedge view --replay draws the recorded hand as a marker", "[cli][view][replay]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));
+  // A right hand held still in front of the green tesseract (between it and the camera), not squeezing.
+  std::string rec = R"({"format":"wedge-recording","version":1,"source":"script","units":{"time":"s","position":"m",)"
+                    R"("acceleration":"g","rotation_rate":"rad/s"},"conventions":{}})"
+                    "\n";
+  for (int i = 0; i <= 20; ++i)
+    rec += R"({"t":)" + std::to_string(i * 0.05) +
+           R"(,"type":"hand","hand":"right","position":[0,0,0.9],"orientation":[1,0,0,0],"squeeze":0,)"
+           R"("trigger":0,"buttons":[],"mode4d":false})" "\n";
+  dir.write("hand.jsonl", rec);
+  const Result without = under_xvfb(dir, "view s.json --frames 5 --screenshot a.png --size 800x450");
+  const Result with = under_xvfb(dir, "view s.json --replay hand.jsonl --frames 5 --screenshot b.png --size 800x450");
+  INFO(with.err);
+  REQUIRE(without.code == 0);
+  REQUIRE(with.code == 0);
+  // Magenta (red and blue well above green) appears only with the hand.
+  auto magenta = [](const fs::path& file) {
+    png_image img{};
+    img.version = PNG_IMAGE_VERSION;
+    REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
+    img.format = PNG_FORMAT_RGB;
+    std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(img));
+    REQUIRE(png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr) != 0);
+    long count = 0;
+    for (std::size_t i = 0; i < rgb.size(); i += 3)
+      count += rgb[i] > rgb[i + 1] + 80 && rgb[i + 2] > rgb[i + 1] + 60;
+    return count;
+  };
+  CHECK(magenta(dir.path() / "a.png") == 0);
+  CHECK(magenta(dir.path() / "b.png") > 15);
+}

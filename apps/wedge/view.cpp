@@ -185,6 +185,28 @@ struct MouseHand {
   bool ever = false;  // tracked since the first press
 };
 
+// A small axis-aligned cube (a marker in the slice: a hand, a haptic pulse).
+slicing::DisplayMesh<3> marker_cube(const Eigen::Vector3d& center, double half) {
+  slicing::DisplayMesh<3> m;
+  for (int c = 0; c < 8; ++c)
+    m.vertices.push_back(center + half * Eigen::Vector3d(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1));
+  // Two outward triangles per face: axis a, side s (corner bits), counterclockwise seen from outside.
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3, base = side << a;
+      const int q[4] = {base, base | (1 << b), base | (1 << b) | (1 << c), base | (1 << c)};
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      n[a] = side ? 1.0 : -1.0;
+      for (const auto& t : {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
+        std::array<int, 3> cell = t;
+        if (side == 0) std::swap(cell[1], cell[2]);
+        m.cells.push_back(cell);
+        m.normals.push_back({n, n, n});
+      }
+    }
+  return m;
+}
+
 // The ray through window pixel (x, y) of a view whose left edge is at `left` px, width x height px.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const render::Camera& camera, double x, double y, int left,
                                                        int width, int height) {
@@ -263,6 +285,15 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     std::unique_ptr<input::Interaction<N>> mouse_in;
     if (!replay) mouse_in = mouse_layer();
     std::vector<std::string> pulse_log;
+    std::vector<std::pair<Vec<N>, double>> flashes;  // haptic pulses shown: contact point, until (s)
+    std::vector<slicing::DisplayMesh<3>> markers;
+    auto log_pulse = [&](const input::HapticPulse<N>& p) {  // the panel's log and a flash at the contact
+      char line[160];
+      std::snprintf(line, sizeof line, "t %.2f s: %s hand, %s on %s, %.2f", p.t, p.hand == 0 ? "left" : "right",
+                    world.name(p.held).c_str(), world.name(p.other).c_str(), p.amplitude);
+      pulse_log.emplace_back(line);
+      flashes.emplace_back(p.point, world.time() + 0.25);
+    };
 
     for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
       throw_if_interrupted();
@@ -334,6 +365,21 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         if (sb.color) color = {float((*sb.color)[0]), float((*sb.color)[1]), float((*sb.color)[2])};
         desc.meshes.push_back({&meshes[k], color});
         in_slice += !meshes[k].empty();
+      }
+      // Markers: the recorded hands (left cyan, right magenta) and, for a quarter second, each haptic
+      // pulse's contact point (yellow): a mouse and a screen cannot feel them.
+      markers.clear();
+      std::erase_if(flashes, [&](const auto& f) { return f.second <= world.time(); });
+      const input::Interaction<N>* layer = replay ? &replay->interaction() : nullptr;
+      for (int k = 0; layer && k < input::kHandCount; ++k)
+        if (layer->tracked(k)) markers.push_back(marker_cube(slices.to_slice_point(layer->hand_point(k)), 0.04));
+      const std::size_t hand_markers = markers.size();
+      for (const auto& f : flashes) markers.push_back(marker_cube(slices.to_slice_point(f.first), 0.05));
+      for (std::size_t k = 0; k < markers.size(); ++k) {
+        const bool left_hand = k < hand_markers && layer && k == 0 && layer->tracked(0);
+        desc.meshes.push_back({&markers[k], k >= hand_markers ? render::Color{1.0f, 0.85f, 0.0f}
+                                            : left_hand      ? render::Color{0.0f, 0.9f, 0.9f}
+                                                             : render::Color{1.0f, 0.1f, 0.8f}});
       }
       glViewport(0, 0, fb_width, fb_height);
       glClearColor(desc.background[0], desc.background[1], desc.background[2], 1.0f);
@@ -425,6 +471,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       for (int s = 0; s < steps; ++s) {
         if (replay) {
           replay->step(world, world.step_count(), h, file);
+          for (const input::HapticPulse<N>& p : replay->interaction().pulses()) log_pulse(p);
           continue;
         }
         input::InputFrame input_frame;
@@ -448,12 +495,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         mouse_in->before_step(input_frame, h);
         checked_step(world, h, file);
         mouse_in->after_step();
-        for (const input::HapticPulse<N>& p : mouse_in->pulses()) {
-          char line[160];
-          std::snprintf(line, sizeof line, "t %.2f s: %s on %s, %.2f", p.t, world.name(p.held).c_str(),
-                        world.name(p.other).c_str(), p.amplitude);
-          pulse_log.emplace_back(line);
-        }
+        for (const input::HapticPulse<N>& p : mouse_in->pulses()) log_pulse(p);
       }
       times.add(seconds_since(t0), slicing_time, drawing_time);
     }
