@@ -144,6 +144,22 @@ struct MouseState {
   double x = 0, y = 0;
   bool left = false, right = false, middle = false, shift = false;
   double wheel = 0;
+  std::optional<double> roll, pitch;  // the phone's tilt, degrees (script fields "roll", "pitch", "tilt_w")
+  std::optional<bool> tilt_w;
+};
+
+// The phone a viewer user tilts from the panel (or the arrow keys): still, turned by `roll` about its z
+// axis (counterclockwise, out of the screen) and `pitch` about its x axis. Once touched it feeds the input
+// layer's accelerometer path every step, as a still phone reads: gravity in the device frame.
+struct Phone {
+  bool active = false;
+  float roll = 0.0f, pitch = 0.0f;  // degrees
+  bool tilt_w = false;
+  Eigen::Vector3d acceleration() const {  // g: Rz(-roll) Rx(-pitch) (0, -1, 0)
+    const double r = roll * M_PI / 180.0, p = pitch * M_PI / 180.0;
+    return Eigen::AngleAxisd(-r, Eigen::Vector3d::UnitZ()) * (Eigen::AngleAxisd(-p, Eigen::Vector3d::UnitX()) *
+                                                             Eigen::Vector3d(0.0, -1.0, 0.0));
+  }
 };
 
 std::vector<std::pair<std::int64_t, MouseState>> read_mouse_script(const std::string& path) {
@@ -162,6 +178,9 @@ std::vector<std::pair<std::int64_t, MouseState>> read_mouse_script(const std::st
       m.right = j.value("right", false);
       m.shift = j.value("shift", false);
       m.wheel = j.value("wheel", 0.0);
+      if (j.contains("roll")) m.roll = j.at("roll").get<double>();
+      if (j.contains("pitch")) m.pitch = j.at("pitch").get<double>();
+      if (j.contains("tilt_w")) m.tilt_w = j.at("tilt_w").get<bool>();
       const std::int64_t frame = j.at("frame").get<std::int64_t>();
       if (!script.empty() && frame <= script.back().first) throw Failure("frames must increase");
       script.emplace_back(frame, m);
@@ -261,6 +280,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     MouseState scripted;
     bool was_left = false;
     MouseHand hand;
+    Phone phone;
     // Without recordings the mouse is the right hand of an input layer of its own; tracking space is the
     // slice (origin: the slice's hidden offsets).
     // The scene's tracking space, with its hidden coordinates moved to the viewed slice (unless recording:
@@ -315,6 +335,20 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         mouse.wheel = io.MouseWheel;
       } else {
         glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
+      }
+      if (mouse.roll || mouse.pitch || mouse.tilt_w) phone.active = true;
+      if (mouse.roll) phone.roll = float(*mouse.roll);
+      if (mouse.pitch) phone.pitch = float(*mouse.pitch);
+      if (mouse.tilt_w) phone.tilt_w = *mouse.tilt_w && N >= 4;
+      if (script.empty() && !io.WantCaptureKeyboard) {  // arrow keys tilt the phone, a degree a frame
+        const auto key = [&](int k) { return glfwGetKey(window.get(), k) == GLFW_PRESS; };
+        const float dr = float(key(GLFW_KEY_LEFT)) - float(key(GLFW_KEY_RIGHT)),
+                    dp = float(key(GLFW_KEY_UP)) - float(key(GLFW_KEY_DOWN));
+        if (dr != 0.0f || dp != 0.0f) {
+          phone.active = true;
+          phone.roll = std::clamp(phone.roll + dr, -90.0f, 90.0f);
+          phone.pitch = std::clamp(phone.pitch + dp, -90.0f, 90.0f);
+        }
       }
       const double dx = mouse.x - last_x, dy = mouse.y - last_y;
       const Eigen::Vector3d forward = (orbit.camera.target - orbit.camera.eye).normalized();
@@ -419,6 +453,15 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       ImGui::Text("drawing %.2f ms", 1e3 * times.drawing);
       ImGui::TextWrapped("Left drag on a body: grab and move it (wheel: depth; right drag: turn it, with Shift into "
                          "w). Release throws. Right drag: orbit. Middle drag: pan. Wheel: zoom.");
+      if (mouse_in) {  // the phone: tilts gravity through the input layer, as an accelerometer would
+        ImGui::Separator();
+        ImGui::Text("phone (tilts gravity; arrow keys too)");
+        phone.active |= ImGui::SliderFloat("roll", &phone.roll, -90.0f, 90.0f, "%.0f deg");
+        phone.active |= ImGui::SliderFloat("pitch", &phone.pitch, -90.0f, 90.0f, "%.0f deg");
+        if (N >= 4) phone.active |= ImGui::Checkbox("tilt toward w", &phone.tilt_w);
+        const Vec<N> g = world.gravity();
+        ImGui::Text("gravity |g| %.2f m/s^2, %s", g.norm(), phone.active ? "from the phone" : "the scene's");
+      }
       ImGui::Separator();
       ImGui::Text("haptic pulses (a mouse cannot feel them):");
       for (std::size_t i = pulse_log.size() > 8 ? pulse_log.size() - 8 : 0; i < pulse_log.size(); ++i)
@@ -462,6 +505,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         if (!replay) mouse_in = mouse_layer();
         hand = MouseHand{};
         record.hands.clear();  // a recording starts with the world it replays into
+        record.motion.clear();
         pending = 0.0;
       }
       if (playing) pending += (frames > 0 ? kFrameTime : elapsed) * time_scale;
@@ -482,6 +526,14 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         right.orientation = hand.turn;
         right.squeeze = hand.holding ? 1.0 : 0.0;
         right.mode4d = hand.mode4d;
+        recordings::MotionSample motion;
+        if (phone.active) {
+          motion.t = input_frame.t;
+          motion.acceleration = phone.acceleration();
+          motion.tilt = phone.tilt_w;
+          input_frame.motion = std::span<const recordings::MotionSample>(&motion, 1);
+          if (recording) record.motion.push_back(motion);
+        }
         if (recording && right.tracked) {  // one sample per step, at its time: replay reads it back exactly
           recordings::HandSample sample;
           sample.t = input_frame.t;
