@@ -39,23 +39,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Size {
-  int width = 1280, height = 720;
-};
-
-Size parse_size(const std::string& scene, const std::string& text) {
-  Size s;
-  if (text.empty()) return s;
-  const std::size_t x = text.find('x');
-  std::int64_t w = 0, h = 0;
-  if (x == std::string::npos || !parse_int64(text.substr(0, x), w) || !parse_int64(text.substr(x + 1), h) || w < 16 ||
-      h < 16 || w > 8192 || h > 8192)
-    throw Failure(scene + ": --size must be WIDTHxHEIGHT with each in 16..8192 pixels (got '" + text + "')");
-  s.width = int(w);
-  s.height = int(h);
-  return s;
-}
-
 // A progress bar on stderr, only when stderr is a terminal.
 class Progress {
  public:
@@ -274,7 +257,7 @@ CLI::App* add_render_verb(CLI::App& app, RenderOptions& o) {
 
 int run_render(const RenderOptions& o) {
   const StepOptions run = parse_step_options(o.scene, o.steps, o.dt, o.every);
-  const Size size = parse_size(o.scene, o.size);
+  const Size size = parse_size(o.scene, o.size, 16, 16);
   if (o.out.empty()) throw Failure(o.scene + ": --out DIR is required");
   const Json doc = read_json_file(o.scene);
   const int n = read_dim(doc, o.scene);

@@ -38,6 +38,26 @@ inline bool parse_double(const std::string& text, double& out) {
   return true;
 }
 
+// A picture or window size, --size WIDTHxHEIGHT (px).
+struct Size {
+  int width = 1280, height = 720;
+};
+
+// --size WxH with min_width..8192 by min_height..8192 (default 1280x720); throws Failure naming `scene`.
+inline Size parse_size(const std::string& scene, const std::string& text, int min_width, int min_height) {
+  Size s;
+  if (text.empty()) return s;
+  const std::size_t x = text.find('x');
+  std::int64_t w = 0, h = 0;
+  if (x == std::string::npos || !parse_int64(text.substr(0, x), w) || !parse_int64(text.substr(x + 1), h) ||
+      w < min_width || h < min_height || w > 8192 || h > 8192)
+    throw Failure(scene + ": --size must be WIDTHxHEIGHT, at least " + std::to_string(min_width) + "x" +
+                  std::to_string(min_height) + " and at most 8192x8192 pixels (got '" + text + "')");
+  s.width = int(w);
+  s.height = int(h);
+  return s;
+}
+
 struct StepOptions {
   std::int64_t steps = 0, every = 1;
   std::optional<double> dt;

@@ -606,16 +606,8 @@ int run_view(const ViewOptions& o) {
   const int n = read_dim(doc, o.scene);
   const std::vector<double> w = parse_slice_offsets(o.scene, o.w, n);
   const int subdivisions = parse_subdivisions(o.scene, o.subdivisions, n);
-  int width = 1280, height = 720;
-  if (!o.size.empty()) {
-    const std::size_t x = o.size.find('x');
-    std::int64_t a = 0, b = 0;
-    if (x == std::string::npos || !parse_int64(o.size.substr(0, x), a) || !parse_int64(o.size.substr(x + 1), b) ||
-        a < 480 || b < 240 || a > 8192 || b > 8192)
-      throw Failure(o.scene + ": --size must be WIDTHxHEIGHT, at least 480x240 (room for the panel) and at most "
-                              "8192x8192 pixels (got '" + o.size + "')");
-    width = int(a), height = int(b);
-  }
+  const Size size = parse_size(o.scene, o.size, 480, 240);  // (room for the panel)
+  const int width = size.width, height = size.height;
   return with_dim(n, [&](auto dim) { return view<decltype(dim)::value>(doc, o, w, width, height, frames, subdivisions); });
 }
 

@@ -10,6 +10,10 @@ namespace wedge::contact {
 
 template <int N>
 bool prepare_grabs(ContactState<N>& s, const std::vector<Body<N>>& bodies, double h) {
+  if (s.grabs.empty()) {  // (the usual world: nothing per body to clear each step)
+    s.driven.clear();
+    return false;
+  }
   s.driven.assign(bodies.size(), 0);
   bool any = false;
   for (GrabConstraint<N>& g : s.grabs) {

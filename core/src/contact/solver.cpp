@@ -249,7 +249,7 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
       if (ra != rb) s.union_parent[std::max(ra, rb)] = std::min(ra, rb);
     }
   // A group with a grabbed body has an outside source of energy (the hand): it may gain energy.
-  s.group_driven.assign(n, 0);
+  s.group_driven.assign(s.driven.empty() ? 0 : n, 0);
   if (!restitutive_only)
     for (int i = 0; i < n && i < int(s.driven.size()); ++i)
       if (s.driven[i]) s.group_driven[root(i)] = 1;
@@ -273,7 +273,7 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
   for (int i = 0; i < n; ++i) {
     if (!moves(i)) continue;
     const int r = root(i);
-    if (s.group_driven[r]) continue;
+    if (!s.group_driven.empty() && s.group_driven[r]) continue;
     const double b = lin[r], c = quad[r];
     if (!(b + c > 1e-12 * std::abs(b)) || !(c > 0.0)) continue;
     const double alpha = std::clamp(-b / c, 0.0, 1.0);
