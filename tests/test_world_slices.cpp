@@ -75,3 +75,27 @@ TEST_CASE("WorldSlices: 5D offsets go to x4, then x3", "[slicing]") {
   off.slice(world, meshes);
   for (const auto& m : meshes) CHECK(m.empty());
 }
+
+TEST_CASE("WorldSlices: bodies culled by their bounding ball are exactly those the slicer leaves empty",
+          "[slicing]") {
+  // The cull skips a body whose bounding ball misses the flat. Sliced without it (a BodySlicer of the same
+  // mesh), every body gives the same triangles, for slices sweeping across the bodies' faces in w,
+  // and at w = +-0.5, -0.1, 0.9, 1.5 and 2.5, where the slice touches a face (vertices on the flat).
+  const World<4> world = row_in_w<4>();
+  std::vector<double> ws = {-0.5, 0.5, -0.1, 0.9, 1.5, 2.5};
+  for (int i = -8; i <= 28; ++i) ws.push_back(0.1 * i + 0.013);
+  for (double w0 : ws) {
+    slicing::WorldSlices<4> slices(world, {w0}, 1);
+    std::vector<slicing::DisplayMesh<3>> meshes;
+    slices.slice(world, meshes);
+    for (std::size_t k = 0; k < slices.entries().size(); ++k) {
+      const BodyId id{std::uint32_t(slices.entries()[k].body)};
+      slicing::BodySlicer<4> plain(slicing::display_mesh<4>(*world.shape(id), 1));
+      const Body<4>& b = world.body(id);
+      const slicing::DisplayMesh<3> expected = plain.slice({to_matrix(b.rotor), b.position()}, slices.chain());
+      INFO("w0 " << w0 << ", body " << k);
+      CHECK(meshes[k].cells.size() == expected.cells.size());
+      CHECK(meshes[k].vertices == expected.vertices);
+    }
+  }
+}

@@ -46,8 +46,23 @@ void WorldSlices<N>::slice(const World<N>& world, std::vector<DisplayMesh<3>>& o
   out.resize(entries_.size());
   for (std::size_t k = 0; k < entries_.size(); ++k) {
     const Body<N>& b = world.body(BodyId{std::uint32_t(entries_[k].body)});
-    out[k] = entries_[k].slicer.slice(Placement<N>{to_matrix(b.rotor), b.position()}, chain_);
+    if (misses(b.center, entries_[k].radius)) {  // (most bodies of a 4D scene lie off the slice)
+      out[k].vertices.clear();
+      out[k].cells.clear();
+      out[k].normals.clear();
+      continue;
+    }
+    entries_[k].slicer.slice(Placement<N>{to_matrix(b.rotor), b.position()}, chain_, out[k]);
   }
+}
+
+template <int N>
+bool WorldSlices<N>::misses(const Vec<N>& center, double radius) const {
+  // The centre's distance from the flat beyond the bounding radius, with a margin of 1e-9 m so that a mesh
+  // vertex exactly on the flat (whose zero-area pieces the slicer would keep) is never culled.
+  const Vec<N> rel = center - flat_.origin;
+  const Vec<N> off = rel - flat_.frame * (flat_.frame.transpose() * rel);
+  return off.norm() > radius + 1e-9;
 }
 
 template <int N>

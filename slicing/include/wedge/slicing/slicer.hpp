@@ -65,6 +65,11 @@ class MeshSlicer {
   std::vector<std::uint8_t> normal_kind_;
   std::vector<Vec<N>> vertex_normals_;
   bool any_smooth_ = false;
+  // Runs of kChunk consecutive cells (neighbours, in the mesh's vertex order) with a ball holding their
+  // vertices: a run whose ball the plane misses is skipped whole, which leaves the output unchanged.
+  static constexpr std::size_t kChunk = 16;
+  std::vector<Vec<N>> chunk_center_;
+  std::vector<double> chunk_radius_;
   // Scratch.
   std::vector<double> dist_;
   std::vector<std::uint8_t> above_;
@@ -103,7 +108,13 @@ template <int N>
 class BodySlicer {
  public:
   explicit BodySlicer(const DisplayMesh<N>& mesh);
-  DisplayMesh<3> slice(const Placement<N>& placement, const SliceChain<N>& chain);
+  // Replaces `out` by the slice, reusing its storage (in 3D and 4D nothing is allocated once it has grown).
+  void slice(const Placement<N>& placement, const SliceChain<N>& chain, DisplayMesh<3>& out);
+  DisplayMesh<3> slice(const Placement<N>& placement, const SliceChain<N>& chain) {
+    DisplayMesh<3> out;
+    slice(placement, chain, out);
+    return out;
+  }
 
  private:
   DisplayMesh<N> mesh_;  // kept for N = 3 only

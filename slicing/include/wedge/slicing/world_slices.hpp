@@ -34,7 +34,9 @@ class WorldSlices {
   const Flat3<N>& flat() const { return flat_; }
   const SliceChain<N>& chain() const { return chain_; }
 
-  // The slice of each bounded body (entries() order) in the world's current state.
+  // The slice of each bounded body (entries() order) in the world's current state. Bodies whose bounding
+  // ball misses the flat are not sliced; `out`'s storage is reused (no allocation once it has grown, in 3D
+  // and 4D).
   void slice(const World<N>& world, std::vector<DisplayMesh<3>>& out);
 
   // A ball in slice coordinates holding body k's slice (absent if the slice misses the body): the body
@@ -56,6 +58,9 @@ class WorldSlices {
   Flat3<N> flat_;
   std::vector<Entry> entries_;
   std::optional<int> ground_body_;
+
+  // True if the ball of `radius` about `center` (world) lies off the 3-flat: the body there slices to nothing.
+  bool misses(const Vec<N>& center, double radius) const;
 };
 
 }  // namespace wedge::slicing
