@@ -119,6 +119,9 @@ TEST_CASE("wedge view: without a display it exits 2 naming DISPLAY", "[cli][view
   const Result no_frames = dir.run("view s.json --screenshot x.png");
   CHECK(no_frames.code == 2);
   CHECK(no_frames.err.find("--frames") != std::string::npos);
+  const Result bad_level = dir.run("view s.json --play-subdivisions 0 --frames 1");
+  CHECK(bad_level.code == 2);
+  CHECK(bad_level.err.find("s.json: --play-subdivisions must be an integer in 1..64") != std::string::npos);
 }
 
 TEST_CASE("wedge view: a scripted mouse grabs a body, drags it and throws it", "[cli][view]") {

@@ -99,3 +99,28 @@ TEST_CASE("WorldSlices: bodies culled by their bounding ball are exactly those t
     }
   }
 }
+
+TEST_CASE("WorldSlices: the coarse level slices round shapes at its own tessellation, polytopes as they are",
+          "[slicing]") {
+  World<4> world = row_in_w<4>();
+  BodyDef<4> ball;
+  ball.shape = std::make_shared<const Shape<4>>(Shape<4>::ball(0.5));
+  ball.position = Vec<4>(0.0, 2.0, 0.0, 0.1);
+  world.add_body(ball);
+  slicing::WorldSlices<4> slices(world, {0.0}, 8, 5);
+  std::vector<slicing::DisplayMesh<3>> fine, coarse;
+  slices.slice(world, fine, slicing::Detail::Fine);
+  slices.slice(world, coarse, slicing::Detail::Coarse);
+  REQUIRE(slices.entries().size() == 4);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const BodyId id{std::uint32_t(slices.entries()[k].body)};
+    const Body<4>& b = world.body(id);
+    const slicing::Placement<4> pl{to_matrix(b.rotor), b.position()};
+    INFO("body " << k);
+    CHECK(fine[k].vertices == slicing::slice_to_3d(slicing::display_mesh<4>(*world.shape(id), 8), pl, slices.chain()).vertices);
+    CHECK(coarse[k].vertices == slicing::slice_to_3d(slicing::display_mesh<4>(*world.shape(id), 5), pl, slices.chain()).vertices);
+    CHECK(slices.entries()[k].coarse.has_value() == (k == 3));  // the boxes need no second mesh
+  }
+  CHECK(coarse[3].cells.size() < fine[3].cells.size() / 2);  // (5/8)^2 of the triangles, about
+  CHECK(!coarse[3].empty());
+}

@@ -2,6 +2,7 @@
 // prepared for slicing by the library piece slicing::WorldSlices.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -40,11 +41,22 @@ inline std::vector<double> parse_slice_offsets(const std::string& scene, const s
   return w;
 }
 
-inline int parse_subdivisions(const std::string& scene, const std::string& text, int n) {
+// The viewer's level while a scene plays: about 5/8 of the still level (8 -> 5 in 4D, 4 -> 3 in 5D), which
+// keeps the 4D figure scenes' physics plus slicing under 2 ms a frame (bench/README.md).
+constexpr int default_play_subdivisions(int subdivisions) { return std::max(1, (5 * subdivisions + 7) / 8); }
+
+inline int parse_subdivisions(const std::string& scene, const std::string& text, int n,
+                              const char* option = "--subdivisions") {
   if (text.empty()) return default_display_subdivisions(n);
   std::int64_t s = 0;
-  if (!parse_int64(text, s) || s < 1 || s > 64)
-    throw Failure(scene + ": --subdivisions must be an integer in 1..64 (got '" + text + "')");
+  if (!parse_int64(text, s) || s < 1 || s > 64) {
+    std::string message = scene + ": ";
+    message += option;
+    message += " must be an integer in 1..64 (got '";
+    message += text;
+    message += "')";
+    throw Failure(message);
+  }
   return int(s);
 }
 
@@ -52,8 +64,9 @@ inline int parse_subdivisions(const std::string& scene, const std::string& text,
 // app); a shape that cannot be tessellated is named with the file.
 template <int N>
 slicing::WorldSlices<N> scene_slices(const World<N>& world, const std::vector<double>& w, int subdivisions,
-                                     const std::string& file) {
-  return with_file_context(file, "", [&] { return slicing::WorldSlices<N>(world, w, subdivisions); });
+                                     const std::string& file, int coarse_subdivisions = 0) {
+  return with_file_context(file, "",
+                           [&] { return slicing::WorldSlices<N>(world, w, subdivisions, coarse_subdivisions); });
 }
 
 }  // namespace wedge::cli

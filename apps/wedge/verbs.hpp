@@ -83,7 +83,7 @@ int run_replay(const ReplayOptions& options);
 //            [--screenshot FILE.png]
 struct ViewOptions {
   std::string scene;
-  std::string w, size, subdivisions, frames, screenshot, mouse, record;
+  std::string w, size, subdivisions, play_subdivisions, frames, screenshot, mouse, record;
   std::vector<std::string> replay;
   bool hash = false;
 };

@@ -238,10 +238,10 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const render::Camera& cam
 
 template <int N>
 int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, int width, int height,
-         std::int64_t frames, int subdivisions) {
+         std::int64_t frames, int subdivisions, int play_subdivisions) {
   const std::string& file = o.scene;
   if constexpr (N < 3) {
-    (void)doc, (void)w0, (void)width, (void)height, (void)frames, (void)subdivisions;
+    (void)doc, (void)w0, (void)width, (void)height, (void)frames, (void)subdivisions, (void)play_subdivisions;
     throw Failure(file + ": a 2D scene has no 3D slice to view (view needs a 3D..6D scene)");
   } else {
     const Scene<N> scene = load_scene<N>(doc, file);
@@ -251,7 +251,8 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file);
     std::vector<double> w = w0;
     w.resize(std::size_t(std::max(N - 3, 0)), 0.0);
-    slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file);
+    // Round shapes at two levels: `subdivisions` when still, `play_subdivisions` while the scene plays.
+    slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file, play_subdivisions);
     std::vector<slicing::DisplayMesh<3>> meshes;
     slices.slice(world, meshes);
     std::vector<Eigen::Vector3d> corners;
@@ -318,6 +319,9 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
       throw_if_interrupted();
       glfwPollEvents();
+      // While playing, round shapes are drawn at the coarse level; paused, and in a screenshot, at the fine one.
+      const bool last_frame = frames > 0 && frame == frames;
+      const slicing::Detail detail = playing && !last_frame ? slicing::Detail::Coarse : slicing::Detail::Fine;
       // The mouse: GLFW's, or the script's when there is one.
       MouseState mouse;
       const ImGuiIO& io = ImGui::GetIO();
@@ -357,7 +361,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (mouse_in) {
         const auto ray = cursor_ray(orbit.camera, mouse.x, mouse.y, kViewLeft, width - kViewLeft, height);
         if (mouse.left && !was_left) {  // press: grab what is under the cursor
-          slices.slice(world, meshes);
+          slices.slice(world, meshes, detail);
           if (const auto hit = slicing::pick(meshes, ray.first, ray.second)) {
             hand.holding = hand.ever = true;
             hand.point = hit->point;
@@ -387,7 +391,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       int fb_width = 0, fb_height = 0;
       glfwGetFramebufferSize(window.get(), &fb_width, &fb_height);
       auto t0 = std::chrono::steady_clock::now();
-      slices.slice(world, meshes);
+      slices.slice(world, meshes, detail);
       const double slicing_time = seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
       render::FrameDesc desc = fitted;
@@ -451,6 +455,8 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       ImGui::Text("physics %.2f ms", 1e3 * times.physics);
       ImGui::Text("slicing %.2f ms", 1e3 * times.slicing);
       ImGui::Text("drawing %.2f ms", 1e3 * times.drawing);
+      ImGui::Text("round shapes: %d subdivisions%s", detail == slicing::Detail::Coarse ? play_subdivisions : subdivisions,
+                  detail == slicing::Detail::Coarse && play_subdivisions != subdivisions ? " (playing)" : "");
       ImGui::TextWrapped("Left drag on a body: grab and move it (wheel: depth; right drag: turn it, with Shift into "
                          "w). Release throws. Right drag: orbit. Middle drag: pan. Wheel: zoom.");
       if (mouse_in) {  // the phone: tilts gravity through the input layer, as an accelerometer would
@@ -471,7 +477,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
       const double drawing_time = seconds_since(t0);
 
-      if (frames > 0 && frame == frames) {
+      if (last_frame) {
         if (!o.screenshot.empty()) {
           std::vector<std::uint8_t> rgba(std::size_t(fb_width) * std::size_t(fb_height) * 4), flipped(rgba.size());
           glReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
@@ -575,6 +581,10 @@ CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--size", o.size, "Window size in pixels (default 1280x720)")->type_name("WxH");
   cmd->add_option("--subdivisions", o.subdivisions, "Tessellation of round shapes (default by dimension)")
       ->type_name("S");
+  cmd->add_option("--play-subdivisions", o.play_subdivisions,
+                  "Tessellation of round shapes while the scene plays (default 5/8 of --subdivisions: 5 in 4D); "
+                  "paused frames and screenshots use --subdivisions")
+      ->type_name("S");
   cmd->add_option("--replay", o.replay, "Recordings that drive the scene through the input layer")
       ->type_name("RECORDING...")
       ->expected(1, -1);
@@ -606,9 +616,14 @@ int run_view(const ViewOptions& o) {
   const int n = read_dim(doc, o.scene);
   const std::vector<double> w = parse_slice_offsets(o.scene, o.w, n);
   const int subdivisions = parse_subdivisions(o.scene, o.subdivisions, n);
+  const int play_subdivisions = o.play_subdivisions.empty()
+                                    ? default_play_subdivisions(subdivisions)
+                                    : parse_subdivisions(o.scene, o.play_subdivisions, n, "--play-subdivisions");
   const Size size = parse_size(o.scene, o.size, 480, 240);  // (room for the panel)
   const int width = size.width, height = size.height;
-  return with_dim(n, [&](auto dim) { return view<decltype(dim)::value>(doc, o, w, width, height, frames, subdivisions); });
+  return with_dim(n, [&](auto dim) {
+    return view<decltype(dim)::value>(doc, o, w, width, height, frames, subdivisions, play_subdivisions);
+  });
 }
 
 }  // namespace wedge::cli

@@ -19,7 +19,8 @@ void WorldSlices<N>::set_offsets(const std::vector<double>& w) {
 }
 
 template <int N>
-WorldSlices<N>::WorldSlices(const World<N>& world, const std::vector<double>& w, int subdivisions) {
+WorldSlices<N>::WorldSlices(const World<N>& world, const std::vector<double>& w, int subdivisions,
+                            int coarse_subdivisions) {
   set_offsets(w);
   for (int i = 0; i < world.body_count(); ++i) {
     const BodyId id{std::uint32_t(i)};
@@ -29,20 +30,25 @@ WorldSlices<N>::WorldSlices(const World<N>& world, const std::vector<double>& w,
       if (!ground_body_ && world.body(id).type == BodyType::Static) ground_body_ = i;
       continue;
     }
-    DisplayMesh<N> mesh;
+    DisplayMesh<N> mesh, coarse;
     try {
       mesh = display_mesh<N>(*shape, subdivisions);
+      if (coarse_subdivisions > 0 && coarse_subdivisions != subdivisions)
+        coarse = display_mesh<N>(*shape, coarse_subdivisions);
     } catch (const Error& e) {
       throw Error("bodies[" + std::to_string(i) + "].shape: " + e.what());
     }
     double r = 0.0;
-    for (const Vec<N>& v : mesh.vertices) r = std::max(r, (v - world.body(id).local_center).norm());
-    entries_.push_back(Entry{i, BodySlicer<N>(mesh), r});
+    for (const DisplayMesh<N>* m : {&mesh, &coarse})
+      for (const Vec<N>& v : m->vertices) r = std::max(r, (v - world.body(id).local_center).norm());
+    std::optional<BodySlicer<N>> coarse_slicer;
+    if (!coarse.empty() && coarse.cells.size() != mesh.cells.size()) coarse_slicer.emplace(coarse);
+    entries_.push_back(Entry{i, BodySlicer<N>(mesh), std::move(coarse_slicer), r});
   }
 }
 
 template <int N>
-void WorldSlices<N>::slice(const World<N>& world, std::vector<DisplayMesh<3>>& out) {
+void WorldSlices<N>::slice(const World<N>& world, std::vector<DisplayMesh<3>>& out, Detail detail) {
   out.resize(entries_.size());
   for (std::size_t k = 0; k < entries_.size(); ++k) {
     const Body<N>& b = world.body(BodyId{std::uint32_t(entries_[k].body)});
@@ -52,7 +58,9 @@ void WorldSlices<N>::slice(const World<N>& world, std::vector<DisplayMesh<3>>& o
       out[k].normals.clear();
       continue;
     }
-    entries_[k].slicer.slice(Placement<N>{to_matrix(b.rotor), b.position()}, chain_, out[k]);
+    BodySlicer<N>& slicer =
+        detail == Detail::Coarse && entries_[k].coarse ? *entries_[k].coarse : entries_[k].slicer;
+    slicer.slice(Placement<N>{to_matrix(b.rotor), b.position()}, chain_, out[k]);
   }
 }
 

@@ -14,18 +14,25 @@
 
 namespace wedge::slicing {
 
+// How finely round shapes are tessellated: Fine at the constructor's subdivisions, Coarse at its
+// coarse_subdivisions (a viewer's level of detail while the scene plays).
+enum class Detail { Fine, Coarse };
+
 template <int N>
 class WorldSlices {
  public:
   struct Entry {
     int body = 0;          // index in the world
     BodySlicer<N> slicer;
-    double radius = 0.0;   // m, of a ball about the centre of mass holding the whole mesh
+    std::optional<BodySlicer<N>> coarse;  // only where the coarse tessellation differs (round shapes)
+    double radius = 0.0;   // m, of a ball about the centre of mass holding the whole mesh (both levels)
   };
 
   // offsets: up to N - 3 slice offsets (missing ones are 0). subdivisions: the display tessellation of
-  // round shapes. Throws wedge::Error "bodies[i].shape: ..." for a shape that cannot be tessellated.
-  WorldSlices(const World<N>& world, const std::vector<double>& offsets, int subdivisions);
+  // round shapes; coarse_subdivisions (0: none) a second, coarser one for Detail::Coarse. Throws
+  // wedge::Error "bodies[i].shape: ..." for a shape that cannot be tessellated.
+  WorldSlices(const World<N>& world, const std::vector<double>& offsets, int subdivisions,
+              int coarse_subdivisions = 0);
 
   // Moves the slice (same meaning as the constructor's offsets); the prepared meshes are kept.
   void set_offsets(const std::vector<double>& offsets);
@@ -37,7 +44,7 @@ class WorldSlices {
   // The slice of each bounded body (entries() order) in the world's current state. Bodies whose bounding
   // ball misses the flat are not sliced; `out`'s storage is reused (no allocation once it has grown, in 3D
   // and 4D).
-  void slice(const World<N>& world, std::vector<DisplayMesh<3>>& out);
+  void slice(const World<N>& world, std::vector<DisplayMesh<3>>& out, Detail detail = Detail::Fine);
 
   // A ball in slice coordinates holding body k's slice (absent if the slice misses the body): the body
   // lies in the ball of `radius` about its centre, whose cut by the 3-flat is the ball of radius
