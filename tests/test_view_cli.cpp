@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <array>
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -24,46 +25,54 @@ std::string scene(double blue_w) {
          std::to_string(blue_w) + R"(], "color": [0, 0, 1]}]})";
 }
 
-// Pixels where one channel dominates (a lit body of that pure colour), counted from column from_x on.
-std::array<long, 3> coverage(const fs::path& file, int from_x) {
+// A screenshot's pixels, RGB rows top down.
+struct Image {
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  const std::uint8_t* at(std::uint32_t x, std::uint32_t y) const { return &rgb[3 * (std::size_t(y) * width + x)]; }
+};
+Image load(const fs::path& file) {
   png_image img{};
   img.version = PNG_IMAGE_VERSION;
   REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
   img.format = PNG_FORMAT_RGB;
-  std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(img));
-  REQUIRE(png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr) != 0);
-  std::array<long, 3> count{};
-  for (std::uint32_t y = 0; y < img.height; ++y)
-    for (std::uint32_t x = std::uint32_t(from_x); x < img.width; ++x) {
-      const std::uint8_t* p = &rgb[3 * (std::size_t(y) * img.width + x)];
-      for (int c = 0; c < 3; ++c)
-        if (p[c] > 2 * p[(c + 1) % 3] + 30 && p[c] > 2 * p[(c + 2) % 3] + 30) ++count[std::size_t(c)];
-    }
-  return count;
+  Image out;
+  out.rgb.resize(PNG_IMAGE_SIZE(img));
+  REQUIRE(png_image_finish_read(&img, nullptr, out.rgb.data(), 0, nullptr) != 0);
+  out.width = img.width;
+  out.height = img.height;
+  return out;
 }
 
-// Where the pixels of one pure colour are, right of the panel: their count and centroid (px).
+// Where the pixels that pass `is` are, in the box [x0, x1) x [y0, y1) (clipped): their count and centroid.
 struct Blob {
   long count = 0;
   double x = 0, y = 0;
 };
-Blob blob(const fs::path& file, int channel) {
-  png_image img{};
-  img.version = PNG_IMAGE_VERSION;
-  REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
-  img.format = PNG_FORMAT_RGB;
-  std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(img));
-  REQUIRE(png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr) != 0);
+template <typename Pred>
+Blob find(const Image& im, Pred is, int x0 = 316, int y0 = 0, int x1 = 1 << 20, int y1 = 1 << 20) {
   Blob b;
-  for (std::uint32_t y = 0; y < img.height; ++y)
-    for (std::uint32_t x = 316; x < img.width; ++x) {
-      const std::uint8_t* p = &rgb[3 * (std::size_t(y) * img.width + x)];
-      const int c = channel;
-      if (p[c] > 2 * p[(c + 1) % 3] + 30 && p[c] > 2 * p[(c + 2) % 3] + 30) ++b.count, b.x += x, b.y += y;
-    }
+  for (std::uint32_t y = std::uint32_t(std::max(y0, 0)); y < std::min(im.height, std::uint32_t(y1)); ++y)
+    for (std::uint32_t x = std::uint32_t(std::max(x0, 0)); x < std::min(im.width, std::uint32_t(x1)); ++x)
+      if (is(im.at(x, y))) ++b.count, b.x += x, b.y += y;
   if (b.count > 0) b.x /= double(b.count), b.y /= double(b.count);
   return b;
 }
+// A lit body of one pure colour: that channel dominates.
+auto pure(int c) {
+  return [c](const std::uint8_t* p) { return p[c] > 2 * p[(c + 1) % 3] + 30 && p[c] > 2 * p[(c + 2) % 3] + 30; };
+}
+// The viewer's markers: the right hand (magenta), a haptic flash (yellow), contact points (orange).
+bool magenta(const std::uint8_t* p) { return p[0] > p[1] + 80 && p[2] > p[1] + 60; }
+bool yellow(const std::uint8_t* p) { return p[0] > 150 && p[1] > 0.8 * p[0] && p[2] < 60; }
+bool orange(const std::uint8_t* p) { return p[0] > 150 && p[1] > 0.3 * p[0] && p[1] < 0.65 * p[0] && p[2] < 40; }
+
+// Pixels where one channel dominates (a lit body of that pure colour), counted from column from_x on.
+std::array<long, 3> coverage(const fs::path& file, int from_x) {
+  const Image im = load(file);
+  return {find(im, pure(0), from_x).count, find(im, pure(1), from_x).count, find(im, pure(2), from_x).count};
+}
+Blob blob(const fs::path& file, int channel) { return find(load(file), pure(channel)); }
 
 // Runs `wedge ARGS` with DISPLAY set to a fresh Xvfb server (the server picks a free display number).
 Result under_xvfb(const TempDir& dir, const std::string& args) {
@@ -213,20 +222,8 @@ TEST_CASE("wedge view --replay draws the recorded hand as a marker", "[cli][view
   REQUIRE(without.code == 0);
   REQUIRE(with.code == 0);
   // Magenta (red and blue well above green) appears only with the hand.
-  auto magenta = [](const fs::path& file) {
-    png_image img{};
-    img.version = PNG_IMAGE_VERSION;
-    REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
-    img.format = PNG_FORMAT_RGB;
-    std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(img));
-    REQUIRE(png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr) != 0);
-    long count = 0;
-    for (std::size_t i = 0; i < rgb.size(); i += 3)
-      count += rgb[i] > rgb[i + 1] + 80 && rgb[i + 2] > rgb[i + 1] + 60;
-    return count;
-  };
-  CHECK(magenta(dir.path() / "a.png") == 0);
-  CHECK(magenta(dir.path() / "b.png") > 15);
+  CHECK(find(load(dir.path() / "a.png"), magenta).count == 0);
+  CHECK(find(load(dir.path() / "b.png"), magenta).count > 15);
 }
 
 TEST_CASE("wedge view: the phone control tilts gravity, and a recorded session replays it", "[cli][view][replay]") {
@@ -264,4 +261,116 @@ TEST_CASE("wedge view: the phone control tilts gravity, and a recorded session r
   const std::vector<double> g2 = gravity_at(1.6);
   CHECK(std::atan2(g2[3], std::sqrt(g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2])) * 180 / M_PI ==
         Approx(15.0).margin(1e-6));
+}
+
+TEST_CASE("wedge view: a push shows the hand marker, flashes it at the haptic pulse, and --events lists it",
+          "[cli][view]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));  // no gravity; red 0.5 m left of green
+  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
+  REQUIRE(first.code == 0);
+  const Blob red = blob(dir.path() / "f1.png", 0);
+  REQUIRE(red.count > 500);
+  // Grab the red tesseract at frame 2, push it right into the green one over frames 3..40, let go at 60.
+  std::string script;
+  for (int f = 2; f <= 40; ++f)
+    script += "{\"frame\":" + std::to_string(f) + ",\"x\":" + std::to_string(red.x + 110.0 * (f - 2) / 38) +
+              ",\"y\":" + std::to_string(red.y + 20.0 * (f - 2) / 38) + ",\"left\":true}\n";
+  script += "{\"frame\":60,\"x\":" + std::to_string(red.x + 110) + ",\"y\":" + std::to_string(red.y + 20) + "}\n";
+  dir.write("push.jsonl", script);
+  const Result v = under_xvfb(dir, "view s.json --mouse push.jsonl --frames 80 --events ev.jsonl --size 800x450");
+  INFO(v.err);
+  REQUIRE(v.code == 0);
+  // The events, as wedge replay --events writes them: the grab of r at the press (frame 2 advances steps
+  // 2 and 3), then pulses of r on g, then the release (frame 60: steps 118, 119).
+  std::vector<json> events;
+  std::istringstream lines(read_file(dir.path() / "ev.jsonl"));
+  for (std::string line; std::getline(lines, line);) events.push_back(json::parse(line));
+  REQUIRE(events.size() >= 3);
+  CHECK(events.front()["type"] == "grab");
+  CHECK(events.front()["body"] == "r");
+  CHECK(events.front()["step"] == 2);
+  CHECK(events.back()["type"] == "release");
+  CHECK(events.back()["step"] == 118);
+  std::vector<std::int64_t> pulse_steps;
+  for (const json& e : events)
+    if (e["type"] == "haptic") {
+      CHECK(e["bodies"] == json::array({"r", "g"}));
+      CHECK(e["hand"] == "right");
+      pulse_steps.push_back(e["step"].get<std::int64_t>());
+    }
+  REQUIRE(!pulse_steps.empty());
+  CHECK(pulse_steps.size() <= 3);  // (a pulse per contact begin: the push, and a bounce or two at most)
+  CHECK(events[1]["type"] == "haptic");
+  CHECK(events[1]["amplitude"].get<double>() > 0.5);  // the hand was moving at about 1.4 m/s
+  // Frame F draws the state after 2 (F - 1) steps. Before the first pulse the held body's hand marker is
+  // magenta; just after it the marker and the contact flash yellow for 0.25 s (30 steps, 15 frames); long
+  // after the last pulse, still holding: magenta again and no yellow.
+  const std::int64_t hit = pulse_steps.front(), last = pulse_steps.back();
+  const std::int64_t before = hit / 2 - 1, during = (hit + 1) / 2 + 3, after = (last + 1) / 2 + 20;
+  REQUIRE(after < 60);
+  for (std::int64_t f : {before, during, after}) {
+    const Result r = under_xvfb(dir, "view s.json --mouse push.jsonl --frames " + std::to_string(f) + " --screenshot f" +
+                                         std::to_string(f) + ".png --size 800x450");
+    REQUIRE(r.code == 0);
+  }
+  auto shot = [&](std::int64_t f) { return load(dir.path() / ("f" + std::to_string(f) + ".png")); };
+  INFO("pulse steps " << hit << ".." << last << ", frames " << before << ", " << during << ", " << after);
+  CHECK(find(shot(before), magenta).count > 15);
+  CHECK(find(shot(before), yellow).count == 0);
+  CHECK(find(shot(during), yellow).count > 40);  // (both cubes: the hand's grown to 6 cm half size)
+  CHECK(find(shot(during), magenta).count == 0);
+  CHECK(find(shot(after), magenta).count > 15);
+  CHECK(find(shot(after), yellow).count == 0);
+}
+
+TEST_CASE("wedge view --contacts marks the contact points where a resting tesseract meets the ground",
+          "[cli][view]") {
+  TempDir dir;
+  dir.write("g.json", R"({"dim": 4, "gravity": [0, -9.81, 0, 0], "bodies": [
+    {"name": "ground", "static": true, "shape": {"type": "halfspace", "normal": [0, 1, 0, 0], "offset": 0}},
+    {"name": "g", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [0, 0.5, 0, 0], "color": [0, 1, 0]}]})");
+  const Result without = under_xvfb(dir, "view g.json --frames 30 --screenshot a.png --size 800x450");
+  const Result with = under_xvfb(dir, "view g.json --contacts --frames 30 --screenshot b.png --size 800x450");
+  INFO(with.err);
+  REQUIRE(without.code == 0);
+  REQUIRE(with.code == 0);
+  const Image a = load(dir.path() / "a.png"), b = load(dir.path() / "b.png");
+  CHECK(find(a, orange).count == 0);
+  const Blob body = find(b, pure(1)), points = find(b, orange);
+  // The face on the ground is a cube in x, z, w; its 8 corners project onto the 4 bottom corners of the
+  // slice's cube, drawn over everything: orange, below the body's centre, about as far left as right.
+  INFO("body at " << body.x << ", " << body.y << "; contact marks " << points.count << " px at " << points.x << ", "
+                  << points.y);
+  CHECK(points.count > 20);
+  CHECK(points.y > body.y + 20);
+  CHECK(std::abs(points.x - body.x) < 30);
+  // Four separate marks: orange pixels in each quadrant about their centroid (the far corner, hidden
+  // behind the body but drawn over it, is a few pixels across).
+  for (int q = 0; q < 4; ++q) {
+    const int x0 = q & 1 ? int(points.x) : 316, x1 = q & 1 ? 1 << 20 : int(points.x);
+    const int y0 = q & 2 ? int(points.y) : 0, y1 = q & 2 ? 1 << 20 : int(points.y);
+    CHECK(find(b, orange, x0, y0, x1, y1).count >= 2);
+  }
+}
+
+TEST_CASE("wedge view: the body under the cursor is named beside it", "[cli][view]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));
+  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
+  REQUIRE(first.code == 0);
+  const Blob green = blob(dir.path() / "f1.png", 1);
+  dir.write("on.jsonl", "{\"frame\":1,\"x\":" + std::to_string(green.x) + ",\"y\":" + std::to_string(green.y) + "}\n");
+  dir.write("off.jsonl", "{\"frame\":1,\"x\":700,\"y\":420}\n");  // the ground in front of the bodies
+  REQUIRE(under_xvfb(dir, "view s.json --mouse on.jsonl --frames 2 --screenshot on.png --size 800x450").code == 0);
+  REQUIRE(under_xvfb(dir, "view s.json --mouse off.jsonl --frames 2 --screenshot off.png --size 800x450").code == 0);
+  // The label: white text on a dark box just right of and below the cursor.
+  auto white = [](const std::uint8_t* p) { return p[0] > 230 && p[1] > 230 && p[2] > 230; };
+  auto dark = [](const std::uint8_t* p) { return p[0] < 50 && p[1] < 50 && p[2] < 60; };
+  const int gx = int(green.x), gy = int(green.y);
+  const Image on = load(dir.path() / "on.png"), off = load(dir.path() / "off.png");
+  CHECK(find(on, white, gx + 12, gy + 8, gx + 30, gy + 28).count > 5);
+  CHECK(find(on, dark, gx + 8, gy + 6, gx + 30, gy + 28).count > 100);
+  CHECK(find(off, dark, 700 + 8, 420 + 6, 700 + 30, 420 + 28).count == 0);
+  CHECK(find(off, dark, gx + 8, gy + 6, gx + 30, gy + 28).count == 0);
 }

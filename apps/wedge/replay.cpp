@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "event_json.hpp"
 #include "interrupt.hpp"
 #include "json_out.hpp"
 #include "replay_input.hpp"
@@ -25,8 +26,6 @@
 namespace wedge::cli {
 
 namespace {
-
-const char* hand_name(int hand) { return hand == 0 ? "left" : "right"; }
 
 template <int N>
 int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>& dt, std::int64_t every,
@@ -64,41 +63,14 @@ int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>&
   std::int64_t grabs = 0, releases = 0, pulses = 0;
   auto event_lines = [&] {
     for (const input::InteractionEvent<N>& e : in.events()) {
-      const bool grab = e.kind == input::InteractionEvent<N>::Kind::Grab;
-      (grab ? grabs : releases)++;
-      if (!events) continue;
-      OutJson j;
-      j["type"] = grab ? "grab" : "release";
-      j["t"] = e.t;
-      j["step"] = e.step;
-      j["hand"] = hand_name(e.hand);
-      j["body"] = world.name(e.body);
-      if (grab) {
-        j["point"] = to_json(e.point);
-        j["local_point"] = to_json(e.local_point);
-      } else {
-        j["velocity"] = to_json(e.velocity);
-        j["angular_velocity"] = to_json(e.angular_velocity);
-      }
-      events->write_line(j.dump());
+      (e.kind == input::InteractionEvent<N>::Kind::Grab ? grabs : releases)++;
+      if (events) events->write_line(event_json(world, e).dump());
     }
   };
   auto pulse_lines = [&] {
     for (const input::HapticPulse<N>& p : in.pulses()) {
       ++pulses;
-      if (!events) continue;
-      OutJson j;
-      j["type"] = "haptic";
-      j["t"] = p.t;
-      j["step"] = p.step;
-      j["hand"] = hand_name(p.hand);
-      j["amplitude"] = p.amplitude;
-      j["duration"] = p.duration;
-      j["frequency"] = p.frequency;
-      j["bodies"] = OutJson::array({world.name(p.held), world.name(p.other)});
-      j["point"] = to_json(p.point);
-      j["approach_speed"] = p.approach_speed;
-      events->write_line(j.dump());
+      if (events) events->write_line(pulse_json(world, p).dump());
     }
   };
 

@@ -83,9 +83,9 @@ int run_replay(const ReplayOptions& options);
 //            [--screenshot FILE.png]
 struct ViewOptions {
   std::string scene;
-  std::string w, size, subdivisions, play_subdivisions, frames, screenshot, mouse, record;
+  std::string w, size, subdivisions, play_subdivisions, frames, screenshot, mouse, record, events;
   std::vector<std::string> replay;
-  bool hash = false;
+  bool hash = false, contacts = false;
 };
 CLI::App* add_view_verb(CLI::App& app, ViewOptions& options);
 int run_view(const ViewOptions& options);

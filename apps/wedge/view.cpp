@@ -26,11 +26,13 @@
 #include <memory>
 #include <optional>
 
+#include "event_json.hpp"
 #include "interrupt.hpp"
 #include "replay_input.hpp"
 #include "scene_frame.hpp"
 #include "scene_slices.hpp"
 #include "verbs.hpp"
+#include "view_overlays.hpp"
 #include "wedge/render/png.hpp"
 #include "wedge/render/renderer.hpp"
 #include "wedge/slicing/pick.hpp"
@@ -204,28 +206,6 @@ struct MouseHand {
   bool ever = false;  // tracked since the first press
 };
 
-// A small axis-aligned cube (a marker in the slice: a hand, a haptic pulse).
-slicing::DisplayMesh<3> marker_cube(const Eigen::Vector3d& center, double half) {
-  slicing::DisplayMesh<3> m;
-  for (int c = 0; c < 8; ++c)
-    m.vertices.push_back(center + half * Eigen::Vector3d(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1));
-  // Two outward triangles per face: axis a, side s (corner bits), counterclockwise seen from outside.
-  for (int a = 0; a < 3; ++a)
-    for (int side = 0; side < 2; ++side) {
-      const int b = (a + 1) % 3, c = (a + 2) % 3, base = side << a;
-      const int q[4] = {base, base | (1 << b), base | (1 << b) | (1 << c), base | (1 << c)};
-      Eigen::Vector3d n = Eigen::Vector3d::Zero();
-      n[a] = side ? 1.0 : -1.0;
-      for (const auto& t : {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}}) {
-        std::array<int, 3> cell = t;
-        if (side == 0) std::swap(cell[1], cell[2]);
-        m.cells.push_back(cell);
-        m.normals.push_back({n, n, n});
-      }
-    }
-  return m;
-}
-
 // The ray through window pixel (x, y) of a view whose left edge is at `left` px, width x height px.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> cursor_ray(const render::Camera& camera, double x, double y, int left,
                                                        int width, int height) {
@@ -279,7 +259,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     const auto script = o.mouse.empty() ? std::vector<std::pair<std::int64_t, MouseState>>{} : read_mouse_script(o.mouse);
     std::size_t script_next = 0;
     MouseState scripted;
-    bool was_left = false;
+    bool was_left = false, was_c = false;
     MouseHand hand;
     Phone phone;
     // Without recordings the mouse is the right hand of an input layer of its own; tracking space is the
@@ -307,14 +287,27 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     if (!replay) mouse_in = mouse_layer();
     std::vector<std::string> pulse_log;
     std::vector<std::pair<Vec<N>, double>> flashes;  // haptic pulses shown: contact point, until (s)
+    std::array<double, input::kHandCount> hand_flash{};  // a hand's marker flashes until this time (s)
     std::vector<slicing::DisplayMesh<3>> markers;
-    auto log_pulse = [&](const input::HapticPulse<N>& p) {  // the panel's log and a flash at the contact
+    std::unique_ptr<OutputSink> events;  // --events: grabs, releases, pulses as `wedge replay --events` writes them
+    if (!o.events.empty()) events = std::make_unique<OutputSink>(o.events);
+    auto log_pulse = [&](const input::HapticPulse<N>& p) {  // the panel's log, flashes at the contact and hand
       char line[160];
-      std::snprintf(line, sizeof line, "t %.2f s: %s hand, %s on %s, %.2f", p.t, p.hand == 0 ? "left" : "right",
+      std::snprintf(line, sizeof line, "t %.2f s: %s hand, %s on %s, %.2f", p.t, hand_name(p.hand),
                     world.name(p.held).c_str(), world.name(p.other).c_str(), p.amplitude);
       pulse_log.emplace_back(line);
       flashes.emplace_back(p.point, world.time() + 0.25);
+      hand_flash[std::size_t(p.hand)] = world.time() + 0.25;
+      if (events) events->write_line(pulse_json(world, p).dump());
     };
+    auto log_events = [&](const input::Interaction<N>& layer) {
+      for (const input::HapticPulse<N>& p : layer.pulses()) log_pulse(p);
+      if (events)
+        for (const input::InteractionEvent<N>& e : layer.events()) events->write_line(event_json(world, e).dump());
+    };
+    bool show_contacts = o.contacts;
+    const double mark = 0.006 * (fitted.camera.eye - fitted.camera.target).norm();  // m: contact marker size
+    std::string hovered;  // the name of the body under the cursor
 
     for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
       throw_if_interrupted();
@@ -344,6 +337,9 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (mouse.roll) phone.roll = float(*mouse.roll);
       if (mouse.pitch) phone.pitch = float(*mouse.pitch);
       if (mouse.tilt_w) phone.tilt_w = *mouse.tilt_w && N >= 4;
+      const bool c_key = script.empty() && !io.WantCaptureKeyboard && glfwGetKey(window.get(), GLFW_KEY_C) == GLFW_PRESS;
+      if (c_key && !was_c) show_contacts = !show_contacts;
+      was_c = c_key;
       if (script.empty() && !io.WantCaptureKeyboard) {  // arrow keys tilt the phone, a degree a frame
         const auto key = [&](int k) { return glfwGetKey(window.get(), k) == GLFW_PRESS; };
         const float dr = float(key(GLFW_KEY_LEFT)) - float(key(GLFW_KEY_RIGHT)),
@@ -404,20 +400,43 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         desc.meshes.push_back({&meshes[k], color});
         in_slice += !meshes[k].empty();
       }
-      // Markers: the recorded hands (left cyan, right magenta) and, for a quarter second, each haptic
-      // pulse's contact point (yellow): a mouse and a screen cannot feel them.
+      // Markers: the hands (recorded ones, or the mouse while it holds: left cyan, right magenta) and, for
+      // a quarter second after a haptic pulse, yellow at its contact point and on the hand's marker, grown
+      // by half: a mouse and a screen cannot feel them. Optionally the contacts: orange points, dark normals.
       markers.clear();
+      std::vector<render::Color> marker_colors;
+      auto add_marker = [&](slicing::DisplayMesh<3> m, render::Color c) {
+        markers.push_back(std::move(m));
+        marker_colors.push_back(c);
+      };
+      const render::Color kFlash{1.0f, 0.85f, 0.0f};
       std::erase_if(flashes, [&](const auto& f) { return f.second <= world.time(); });
       const input::Interaction<N>* layer = replay ? &replay->interaction() : nullptr;
-      for (int k = 0; layer && k < input::kHandCount; ++k)
-        if (layer->tracked(k)) markers.push_back(marker_cube(slices.to_slice_point(layer->hand_point(k)), 0.04));
-      const std::size_t hand_markers = markers.size();
-      for (const auto& f : flashes) markers.push_back(marker_cube(slices.to_slice_point(f.first), 0.05));
-      for (std::size_t k = 0; k < markers.size(); ++k) {
-        const bool left_hand = k < hand_markers && layer && k == 0 && layer->tracked(0);
-        desc.meshes.push_back({&markers[k], k >= hand_markers ? render::Color{1.0f, 0.85f, 0.0f}
-                                            : left_hand      ? render::Color{0.0f, 0.9f, 0.9f}
-                                                             : render::Color{1.0f, 0.1f, 0.8f}});
+      for (int k = 0; k < input::kHandCount; ++k) {
+        std::optional<Eigen::Vector3d> at;
+        if (layer && layer->tracked(k)) at = slices.to_slice_point(layer->hand_point(k));
+        if (!layer && k == 1 && hand.holding) at = hand.point;
+        if (!at) continue;
+        const bool flash = hand_flash[std::size_t(k)] > world.time();
+        add_marker(marker_cube(*at, flash ? 0.06 : 0.04),
+                   flash ? kFlash : (k == 0 ? render::Color{0.0f, 0.9f, 0.9f} : render::Color{1.0f, 0.1f, 0.8f}));
+      }
+      for (const auto& f : flashes) add_marker(marker_cube(slices.to_slice_point(f.first), 0.05), kFlash);
+      if (show_contacts) {
+        std::vector<bool> in(meshes.size());
+        for (std::size_t k = 0; k < meshes.size(); ++k) in[k] = !meshes[k].empty();
+        const ContactMarks contacts = contact_marks(world, slices, in);
+        for (const Eigen::Vector3d& p : contacts.points) add_marker(marker_cube(p, mark), {1.0f, 0.2f, 0.0f});
+        for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 10 * mark, 0.4 * mark), {0.1f, 0.1f, 0.3f});
+      }
+      for (std::size_t k = 0; k < markers.size(); ++k) desc.meshes.push_back({&markers[k], marker_colors[k], true});
+      // The body under the cursor (not while holding one), named beside it and marked in the panel's list.
+      hovered.clear();
+      if (!hand.holding && !mouse.left && !mouse.right && !mouse.middle && mouse.x >= kViewLeft &&
+          (!script.empty() || !io.WantCaptureMouse)) {
+        const auto ray = cursor_ray(orbit.camera, mouse.x, mouse.y, kViewLeft, width - kViewLeft, height);
+        if (const auto hit = slicing::pick(meshes, ray.first, ray.second))
+          hovered = world.name(BodyId{std::uint32_t(slices.entries()[hit->mesh].body)});
       }
       glViewport(0, 0, fb_width, fb_height);
       glClearColor(desc.background[0], desc.background[1], desc.background[2], 1.0f);
@@ -447,10 +466,21 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         moved |= ImGui::SliderFloat(N == 4 ? "w" : kLabels[axis - 3], &wf[i], float(-reach), float(reach), "%.3f m");
       }
       ImGui::Separator();
+      ImGui::Checkbox("contacts (C)", &show_contacts);
       ImGui::Text("%d of %d bodies in the slice", in_slice, int(meshes.size()));
-      for (std::size_t k = 0; k < meshes.size(); ++k)
-        ImGui::BulletText("%s%s", world.name(BodyId{std::uint32_t(slices.entries()[k].body)}).c_str(),
-                          meshes[k].empty() ? "  (out of the slice)" : "");
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+      ImGui::TextWrapped("(click a body to move the slice through its centre)");
+      ImGui::PopStyleColor();
+      for (std::size_t k = 0; k < meshes.size(); ++k) {
+        const BodyId id{std::uint32_t(slices.entries()[k].body)};
+        std::string label = world.name(id);
+        if (meshes[k].empty()) label += "  (out of the slice)";
+        label += "##" + std::to_string(k);
+        if (ImGui::Selectable(label.c_str(), world.name(id) == hovered) && N > 3) {
+          for (std::size_t i = 0; i < wf.size(); ++i) wf[i] = float(world.body(id).center[N - 1 - int(i)]);
+          moved = true;
+        }
+      }
       ImGui::Separator();
       ImGui::Text("physics %.2f ms", 1e3 * times.physics);
       ImGui::Text("slicing %.2f ms", 1e3 * times.slicing);
@@ -473,6 +503,14 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       for (std::size_t i = pulse_log.size() > 8 ? pulse_log.size() - 8 : 0; i < pulse_log.size(); ++i)
         ImGui::TextUnformatted(pulse_log[i].c_str());
       ImGui::End();
+      if (!hovered.empty()) {  // (drawn at the script's cursor too, so that tests and demos show it)
+        const float sx = float(fb_width) / float(width), sy = float(fb_height) / float(height);
+        const ImVec2 at(float(mouse.x) * sx + 14.0f, float(mouse.y) * sy + 10.0f);
+        const ImVec2 size = ImGui::CalcTextSize(hovered.c_str());
+        ImDrawList* dl = ImGui::GetForegroundDrawList();
+        dl->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2), IM_COL32(20, 20, 30, 220), 3.0f);
+        dl->AddText(at, IM_COL32(255, 255, 255, 255), hovered.c_str());
+      }
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
       const double drawing_time = seconds_since(t0);
@@ -521,7 +559,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       for (int s = 0; s < steps; ++s) {
         if (replay) {
           replay->step(world, world.step_count(), h, file);
-          for (const input::HapticPulse<N>& p : replay->interaction().pulses()) log_pulse(p);
+          log_events(replay->interaction());
           continue;
         }
         input::InputFrame input_frame;
@@ -553,10 +591,11 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         mouse_in->before_step(input_frame, h);
         checked_step(world, h, file);
         mouse_in->after_step();
-        for (const input::HapticPulse<N>& p : mouse_in->pulses()) log_pulse(p);
+        log_events(*mouse_in);
       }
       times.add(seconds_since(t0), slicing_time, drawing_time);
     }
+    if (events) events->commit();
     if (recording) {
       try {
         recordings::write_recording(o.record, record);
@@ -596,6 +635,10 @@ CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
                   "Record the mouse hand to FILE (docs/recording-format.md) on exit; `wedge replay SCENE FILE` "
                   "gives the same state")
       ->type_name("FILE");
+  cmd->add_flag("--contacts", o.contacts, "Show contact points and normals from the start (key C toggles them)");
+  cmd->add_option("--events", o.events,
+                  "Write grabs, releases and haptic pulses to FILE (JSON Lines, as wedge replay --events) on exit")
+      ->type_name("FILE");
   cmd->add_flag("--hash", o.hash, "On exit print the number of steps and the final state hash");
   cmd->add_option("--frames", o.frames, "Draw N frames (1/60 s of simulated time each) and exit")->type_name("N");
   cmd->add_option("--screenshot", o.screenshot, "With --frames: write the last frame to FILE.png")
@@ -610,6 +653,8 @@ int run_view(const ViewOptions& o) {
     throw Failure(o.scene + ": --frames must be an integer >= 1 (got '" + o.frames + "')");
   if (!o.record.empty() && !o.replay.empty())
     throw Failure(o.scene + ": --record records the mouse, which --replay replaces: give one of them");
+  if (!o.events.empty() && (o.events == o.record || o.events == o.screenshot))
+    throw Failure(o.scene + ": --events must name a file of its own");
   if (!o.screenshot.empty() && frames == 0)
     throw Failure(o.scene + ": --screenshot needs --frames N (the screenshot is of frame N)");
   const Json doc = read_json_file(o.scene);

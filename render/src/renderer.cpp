@@ -230,7 +230,7 @@ void Renderer::draw(const FrameDesc& frame, int width, int height, int x, int y)
       std::vector<std::pair<GLint, GLsizei>> ranges;
       std::vector<float> shades;
       for (const MeshDraw& d : frame.meshes) {
-        if (d.mesh == nullptr || d.mesh->cells.empty()) continue;
+        if (d.mesh == nullptr || d.mesh->cells.empty() || d.overlay) continue;
         double lowest = INFINITY;
         for (const Eigen::Vector3d& p : d.mesh->vertices) lowest = std::min(lowest, std::abs(n.dot(p) - g.offset));
         const double fade = g.shadow_fade > 0.0 ? g.shadow_fade / (g.shadow_fade + lowest) : 1.0;
@@ -286,10 +286,17 @@ void Renderer::draw(const FrameDesc& frame, int width, int height, int x, int y)
   glBindVertexArray(impl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, impl_->vbo);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(buf.size() * sizeof(float)), buf.data(), GL_STREAM_DRAW);
-  for (std::size_t i = 0; i < frame.meshes.size(); ++i) {
-    if (ranges[i].second == 0) continue;
-    set_color(impl_->mesh_prog, "u_color", frame.meshes[i].color);
-    glDrawArrays(GL_TRIANGLES, ranges[i].first, ranges[i].second);
+  for (const bool overlays : {false, true}) {
+    if (overlays) {  // overlays see only each other's depth, in this viewport
+      glEnable(GL_SCISSOR_TEST);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glDisable(GL_SCISSOR_TEST);
+    }
+    for (std::size_t i = 0; i < frame.meshes.size(); ++i) {
+      if (ranges[i].second == 0 || frame.meshes[i].overlay != overlays) continue;
+      set_color(impl_->mesh_prog, "u_color", frame.meshes[i].color);
+      glDrawArrays(GL_TRIANGLES, ranges[i].first, ranges[i].second);
+    }
   }
   glBindVertexArray(0);
   glUseProgram(0);

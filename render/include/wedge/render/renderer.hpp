@@ -21,6 +21,9 @@ using Color = std::array<float, 3>;  // linear RGB in [0, 1]
 struct MeshDraw {
   const slicing::DisplayMesh<3>* mesh = nullptr;
   Color color{0.8f, 0.8f, 0.8f};
+  // Drawn after everything else and over it (depth-tested only among overlays), with no shadow: markers
+  // that must stay visible inside or behind bodies (a viewer's hands, contact points).
+  bool overlay = false;
 };
 
 // The ground: an infinite grid on the plane {y : normal . y = offset}, drawn out to `extent` metres
