@@ -93,6 +93,38 @@ TEST_CASE("Renderer: a sliced tesseract covers its square's area in pixels", "[r
   CHECK(std::abs(double(count) - side_px * side_px) <= 4 * side_px + 4);
 }
 
+TEST_CASE("Renderer: an overlay is drawn over a body in front of it, a plain mesh is hidden", "[renderer]") {
+  // Orthographic, looking down -z: a 1 m cube at the origin hides a 0.4 m cube 2 m behind it, unless that
+  // one is an overlay. Only the small cube is green; the big one red. The overlay's square: 40 x 40 px.
+  MeshSlicer<4> slicer(display_mesh(Shape<4>::box(Vec<4>::Constant(0.5)), 1));
+  const DisplayMesh<3> front = slicer.slice(Placement<4>{}, Hyperplane<4>::axis(0.0));
+  MeshSlicer<4> small_slicer(display_mesh(Shape<4>::box(Vec<4>::Constant(0.2)), 1));
+  const DisplayMesh<3> back = small_slicer.slice(Placement<4>{Mat<4>::Identity(), Vec<4>(0, 0, -2, 0)},
+                                                 Hyperplane<4>::axis(0.0));
+  for (const bool overlay : {false, true}) {
+    OffscreenContext ctx(kW, kH);
+    Renderer renderer;
+    FrameDesc frame;
+    frame.camera.orthographic = true;
+    frame.camera.ortho_height = kOrthoHeight;
+    frame.camera.eye = Eigen::Vector3d(0, 0, 10);
+    frame.camera.target = Eigen::Vector3d::Zero();
+    frame.camera.up = Eigen::Vector3d::UnitY();
+    frame.meshes.push_back({&back, Color{0.1f, 0.9f, 0.1f}, overlay});
+    frame.meshes.push_back({&front, Color{0.9f, 0.1f, 0.1f}});
+    renderer.draw(frame, kW, kH);
+    const std::vector<std::uint8_t> px = ctx.read_rgba();
+    long green = 0;
+    for (std::size_t i = 0; i < px.size(); i += 4) green += px[i + 1] > 2 * px[i] + 30 ? 1 : 0;
+    INFO("overlay " << overlay << ": " << green << " green px");
+    const double side = 0.4 * kPixelsPerMetre;
+    if (overlay)
+      CHECK(std::abs(double(green) - side * side) <= 4 * side + 4);
+    else
+      CHECK(green == 0);
+  }
+}
+
 TEST_CASE("Renderer: a rotated tesseract's slice covers its projected convex hull", "[renderer]") {
   std::mt19937_64 rng(99);
   MeshSlicer<4> slicer(display_mesh(Shape<4>::box(Vec<4>(0.5, 0.4, 0.6, 0.45)), 1));
