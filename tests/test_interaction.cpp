@@ -221,6 +221,30 @@ TEMPLATE_TEST_CASE("one haptic pulse per contact a held body begins, rising with
   CHECK(pulse_amplitude(5.0, 2.0, 0.1) == 1.0);
 }
 
+TEMPLATE_TEST_CASE("a body held from the start while resting on the ground has hit nothing until it is set down",
+                   "[input]", D3, D4) {
+  constexpr int N = TestType::value;
+  // The world's first step reports the resting contact as beginning; that is no hit. Lifted 20 cm and set
+  // down again at 0.5 m/s, the cube hits the ground once.
+  World<N> world = make_world<N>(9.81);
+  const BodyId ground = add_ground(world);
+  const BodyId held = add_cube(world, at<N>(0, 0.1));
+  Interaction<N> in(world, InteractionSettings<N>{});
+  std::vector<std::int64_t> pulse_steps, begin_steps;
+  run<N>(world, in, 0, 240, [&](double t) {
+    const double lift = t < 0.4 ? 0.5 * t : std::max(0.2 - 0.5 * (t - 0.8), -0.05);  // up, wait, down (5 cm into it)
+    return hand_at(Eigen::Vector3d(0, 0.1 + std::min(lift, 0.2), 0), 1.0);
+  }, [&](int k) {
+    for (const auto& e : world.contact_begin_events())
+      if (e.a == ground && e.b == held) begin_steps.push_back(k);
+    for (const auto& p : in.pulses()) pulse_steps.push_back(p.step);
+  });
+  REQUIRE(begin_steps.size() == 2);
+  CHECK(begin_steps[0] == 0);            // the resting contact, reported by the first step
+  CHECK(pulse_steps == std::vector<std::int64_t>{begin_steps[1]});  // only the touchdown is felt
+  CHECK(in.held(kRight).has_value());
+}
+
 TEST_CASE("a still phone tilted by a known angle tilts gravity by that angle, and the tilt leaves the slice",
           "[input][gravity]") {
   for (double tilt_deg : {0.0, 10.0, 35.0}) {

@@ -261,6 +261,9 @@ template <int N>
 void Interaction<N>::after_step() {
   pulses_.clear();
   const std::int64_t step = world_.step_count() - 1;
+  // A world's first step reports the contacts the scene starts with as beginning: a body held from the
+  // start while resting on something has hit nothing.
+  if (step == 0) return;
   for (const ContactBeginEvent<N>& e : world_.contact_begin_events()) {
     for (int k = 0; k < kHandCount; ++k) {
       HandState& hs = hands_[k];
