@@ -306,7 +306,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         for (const input::InteractionEvent<N>& e : layer.events()) events->write_line(event_json(world, e).dump());
     };
     bool show_contacts = o.contacts;
-    const double mark = 0.006 * (fitted.camera.eye - fitted.camera.target).norm();  // m: contact marker size
+    const double mark = 0.004 * (fitted.camera.eye - fitted.camera.target).norm();  // m: contact marker size
     std::string hovered;  // the name of the body under the cursor
 
     for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
@@ -426,8 +426,8 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         std::vector<bool> in(meshes.size());
         for (std::size_t k = 0; k < meshes.size(); ++k) in[k] = !meshes[k].empty();
         const ContactMarks contacts = contact_marks(world, slices, in);
+        for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 12 * mark, 0.35 * mark), {0.1f, 0.1f, 0.3f});
         for (const Eigen::Vector3d& p : contacts.points) add_marker(marker_cube(p, mark), {1.0f, 0.2f, 0.0f});
-        for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 10 * mark, 0.4 * mark), {0.1f, 0.1f, 0.3f});
       }
       for (std::size_t k = 0; k < markers.size(); ++k) desc.meshes.push_back({&markers[k], marker_colors[k], true});
       // The body under the cursor (not while holding one), named beside it and marked in the panel's list.
@@ -501,7 +501,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       ImGui::Separator();
       ImGui::Text("haptic pulses (a mouse cannot feel them):");
       for (std::size_t i = pulse_log.size() > 8 ? pulse_log.size() - 8 : 0; i < pulse_log.size(); ++i)
-        ImGui::TextUnformatted(pulse_log[i].c_str());
+        ImGui::TextWrapped("%s", pulse_log[i].c_str());
       ImGui::End();
       if (!hovered.empty()) {  // (drawn at the script's cursor too, so that tests and demos show it)
         const float sx = float(fb_width) / float(width), sy = float(fb_height) / float(height);
