@@ -374,3 +374,37 @@ TEST_CASE("wedge view: the body under the cursor is named beside it", "[cli][vie
   CHECK(find(off, dark, 700 + 8, 420 + 6, 700 + 30, 420 + 28).count == 0);
   CHECK(find(off, dark, gx + 8, gy + 6, gx + 30, gy + 28).count == 0);
 }
+
+TEST_CASE("wedge view: the w slider moved mid-session, or a body found by name, redraws as the slicer predicts",
+          "[cli][view]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.8));  // blue at w = 0.8, red and green at w = 0 (half size 0.5)
+  // Started at w = 0.4, which meets all three (so the camera frames them all): the slider to 0.8 at frame 3,
+  // to 0 at frame 8. Started at 0, the panel's list click on "b" at frame 3 (the camera turns to it).
+  dir.write("slide.jsonl", "{\"frame\":3,\"x\":0,\"y\":0,\"w\":0.8}\n{\"frame\":8,\"x\":0,\"y\":0,\"w\":[0]}\n");
+  const std::string from = "--w 0.4 --mouse slide.jsonl";
+  dir.write("find.jsonl", "{\"frame\":3,\"x\":0,\"y\":0,\"find\":\"b\"}\n");
+  for (const std::string& run : {from + " --frames 5 --screenshot b.png", from + " --frames 9 --screenshot c.png",
+                                 std::string("--mouse find.jsonl --frames 2 --screenshot a.png"),
+                                 std::string("--mouse find.jsonl --frames 5 --screenshot d.png")}) {
+    const Result r = under_xvfb(dir, "view s.json --size 800x450 " + run);
+    INFO(run << ": " << r.err);
+    REQUIRE(r.code == 0);
+  }
+  const std::array<long, 3> a = coverage(dir.path() / "a.png", 316), b = coverage(dir.path() / "b.png", 316),
+                            c = coverage(dir.path() / "c.png", 316), d = coverage(dir.path() / "d.png", 316);
+  CHECK((a[0] > 500 && a[1] > 500 && a[2] == 0));  // w = 0: |0 - 0.8| > 0.5 hides blue (before the find)
+  CHECK((b[0] == 0 && b[1] == 0 && b[2] > 500));   // w = 0.8: only blue
+  CHECK((c[0] > 500 && c[1] > 500 && c[2] == 0));  // back at 0
+  CHECK((d[0] == 0 && d[1] == 0 && d[2] > 500));   // found: the slice through blue's centre
+  // A script asking for what the scene lacks is refused before any window opens, naming file and frame.
+  dir.write("bad.jsonl", "{\"frame\":3,\"x\":0,\"y\":0,\"find\":\"nobody\"}\n");
+  const Result bad = under_xvfb(dir, "view s.json --mouse bad.jsonl --frames 5 --screenshot e.png");
+  CHECK(bad.code == 2);
+  CHECK(bad.err.find("bad.jsonl: frame 3: \"find\": s.json has no bounded body named 'nobody'") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path() / "e.png"));
+  dir.write("bad_w.jsonl", "{\"frame\":3,\"x\":0,\"y\":0,\"w\":[0.1,0.2]}\n");
+  const Result bad_w = under_xvfb(dir, "view s.json --mouse bad_w.jsonl --frames 5");
+  CHECK(bad_w.code == 2);
+  CHECK(bad_w.err.find("\"w\" has 2 offsets; a 4D scene has 1") != std::string::npos);
+}

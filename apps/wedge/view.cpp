@@ -148,6 +148,8 @@ struct MouseState {
   double wheel = 0;
   std::optional<double> roll, pitch;  // the phone's tilt, degrees (script fields "roll", "pitch", "tilt_w")
   std::optional<bool> tilt_w;
+  std::optional<std::vector<double>> w;  // slice offsets, as the sliders set them (script field "w")
+  std::optional<std::string> find;       // a body whose centre the slice moves to (script field "find")
 };
 
 // The phone a viewer user tilts from the panel (or the arrow keys): still, turned by `roll` about its z
@@ -183,6 +185,9 @@ std::vector<std::pair<std::int64_t, MouseState>> read_mouse_script(const std::st
       if (j.contains("roll")) m.roll = j.at("roll").get<double>();
       if (j.contains("pitch")) m.pitch = j.at("pitch").get<double>();
       if (j.contains("tilt_w")) m.tilt_w = j.at("tilt_w").get<bool>();
+      if (j.contains("w"))
+        m.w = j.at("w").is_array() ? j.at("w").get<std::vector<double>>() : std::vector<double>{j.at("w").get<double>()};
+      if (j.contains("find")) m.find = j.at("find").get<std::string>();
       const std::int64_t frame = j.at("frame").get<std::int64_t>();
       if (!script.empty() && frame <= script.back().first) throw Failure("frames must increase");
       script.emplace_back(frame, m);
@@ -244,6 +249,22 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     for (int i = 0; i < world.body_count(); ++i)
       for (int a = 3; a < N; ++a) reach = std::max(reach, std::abs(world.body(BodyId{std::uint32_t(i)}).center[a]) + 1.0);
 
+    // A --mouse script, checked against the scene before any window opens.
+    const auto script = o.mouse.empty() ? std::vector<std::pair<std::int64_t, MouseState>>{} : read_mouse_script(o.mouse);
+    auto body_named = [&](const std::string& name) -> std::optional<BodyId> {
+      for (const auto& e : slices.entries())
+        if (world.name(BodyId{std::uint32_t(e.body)}) == name) return BodyId{std::uint32_t(e.body)};
+      return std::nullopt;
+    };
+    for (const auto& [frame, m] : script) {
+      const std::string where = o.mouse + ": frame " + std::to_string(frame);
+      if (m.w && m.w->size() > std::size_t(std::max(N - 3, 0)))
+        throw Failure(where + ": \"w\" has " + std::to_string(m.w->size()) + " offsets; a " + std::to_string(N) +
+                      "D scene has " + std::to_string(std::max(N - 3, 0)));
+      if (m.find && !body_named(*m.find))
+        throw Failure(where + ": \"find\": " + file + " has no bounded body named '" + *m.find + "'");
+    }
+
     Window window(file, width, height);
     render::Renderer renderer;  // needs the window's context
     Gui gui(window.get());
@@ -256,7 +277,6 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     auto last = std::chrono::steady_clock::now();
     double last_x = 0, last_y = 0;
     glfwGetCursorPos(window.get(), &last_x, &last_y);
-    const auto script = o.mouse.empty() ? std::vector<std::pair<std::int64_t, MouseState>>{} : read_mouse_script(o.mouse);
     std::size_t script_next = 0;
     MouseState scripted;
     bool was_left = false, was_c = false;
@@ -305,8 +325,22 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (events)
         for (const input::InteractionEvent<N>& e : layer.events()) events->write_line(event_json(world, e).dump());
     };
+    // Moves the slice through body `id`'s centre (the panel's list, or a script's "find").
+    auto find_body = [&](BodyId id) {  // (and turns the camera to it: the orbit's target moves to its centre)
+      for (std::size_t i = 0; i < wf.size(); ++i) wf[i] = float(world.body(id).center[N - 1 - int(i)]);
+      const Eigen::Vector3d to = slices.to_slice_point(world.body(id).center) - orbit.camera.target;
+      orbit.camera.target += to;
+      orbit.camera.eye += to;
+    };
     bool show_contacts = o.contacts;
-    const double mark = 0.004 * (fitted.camera.eye - fitted.camera.target).norm();  // m: contact marker size
+    // Contact marks scale with the bodies: a twentieth of the median bounding radius (5 cm for a unit tesseract).
+    const double mark = [&] {
+      std::vector<double> r;
+      for (const auto& e : slices.entries()) r.push_back(e.radius);
+      if (r.empty()) return 0.05;
+      std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
+      return 0.05 * r[r.size() / 2];
+    }();
     std::string hovered;  // the name of the body under the cursor
 
     for (std::int64_t frame = 1; !glfwWindowShouldClose(window.get()); ++frame) {
@@ -321,7 +355,9 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (!script.empty()) {
         while (script_next < script.size() && script[script_next].first <= frame) scripted = script[script_next++].second;
         mouse = scripted;
-        scripted.wheel = 0;  // (a wheel step happens once)
+        scripted.wheel = 0;  // (a wheel step, a slider move and a find happen once)
+        scripted.w.reset();
+        scripted.find.reset();
       } else if (!io.WantCaptureMouse) {
         glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
         mouse.left = glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
@@ -332,6 +368,15 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         mouse.wheel = io.MouseWheel;
       } else {
         glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
+      }
+      bool slice_request = false;  // the script moved a slider or asked for a body
+      if (mouse.w) {  // (sizes and names were checked with the script)
+        for (std::size_t i = 0; i < wf.size(); ++i) wf[i] = i < mouse.w->size() ? float((*mouse.w)[i]) : 0.0f;
+        slice_request = true;
+      }
+      if (mouse.find) {
+        find_body(*body_named(*mouse.find));
+        slice_request = true;
       }
       if (mouse.roll || mouse.pitch || mouse.tilt_w) phone.active = true;
       if (mouse.roll) phone.roll = float(*mouse.roll);
@@ -426,7 +471,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         std::vector<bool> in(meshes.size());
         for (std::size_t k = 0; k < meshes.size(); ++k) in[k] = !meshes[k].empty();
         const ContactMarks contacts = contact_marks(world, slices, in);
-        for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 12 * mark, 0.35 * mark), {0.1f, 0.1f, 0.3f});
+        for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 8 * mark, 0.3 * mark), {0.1f, 0.1f, 0.3f});
         for (const Eigen::Vector3d& p : contacts.points) add_marker(marker_cube(p, mark), {1.0f, 0.2f, 0.0f});
       }
       for (std::size_t k = 0; k < markers.size(); ++k) desc.meshes.push_back({&markers[k], marker_colors[k], true});
@@ -459,7 +504,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       ImGui::SameLine();
       const bool reset = ImGui::Button("Reset");
       ImGui::SliderFloat("time scale", &time_scale, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
-      bool moved = false;
+      bool moved = slice_request;
       for (std::size_t i = 0; i < wf.size(); ++i) {  // offsets: x_{n-1} first, then x_{n-2} within it
         const int axis = N - 1 - int(i);
         static const char* const kLabels[] = {"x3", "x4", "x5"};
@@ -477,7 +522,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         if (meshes[k].empty()) label += "  (out of the slice)";
         label += "##" + std::to_string(k);
         if (ImGui::Selectable(label.c_str(), world.name(id) == hovered) && N > 3) {
-          for (std::size_t i = 0; i < wf.size(); ++i) wf[i] = float(world.body(id).center[N - 1 - int(i)]);
+          find_body(id);
           moved = true;
         }
       }
