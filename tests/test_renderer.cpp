@@ -35,16 +35,22 @@ constexpr int kW = 320, kH = 240;
 constexpr double kOrthoHeight = 2.4;                 // m: 100 pixels per metre
 constexpr double kPixelsPerMetre = kH / kOrthoHeight;
 
-// Pixels that differ from the background (read at a corner, which the shapes never reach).
-long covered_pixels(const DisplayMesh<3>& mesh) {
-  OffscreenContext ctx(kW, kH);
-  Renderer renderer;
+// An orthographic view down -z from z = 10 m, 100 pixels per metre.
+FrameDesc looking_down_z() {
   FrameDesc frame;
   frame.camera.orthographic = true;
   frame.camera.ortho_height = kOrthoHeight;
   frame.camera.eye = Eigen::Vector3d(0, 0, 10);
   frame.camera.target = Eigen::Vector3d::Zero();
   frame.camera.up = Eigen::Vector3d::UnitY();
+  return frame;
+}
+
+// Pixels that differ from the background (read at a corner, which the shapes never reach).
+long covered_pixels(const DisplayMesh<3>& mesh) {
+  OffscreenContext ctx(kW, kH);
+  Renderer renderer;
+  FrameDesc frame = looking_down_z();
   frame.meshes.push_back({&mesh, Color{0.8f, 0.2f, 0.2f}});
   renderer.draw(frame, kW, kH);
   const std::vector<std::uint8_t> px = ctx.read_rgba();
@@ -104,12 +110,7 @@ TEST_CASE("Renderer: an overlay is drawn over a body in front of it, a plain mes
   for (const bool overlay : {false, true}) {
     OffscreenContext ctx(kW, kH);
     Renderer renderer;
-    FrameDesc frame;
-    frame.camera.orthographic = true;
-    frame.camera.ortho_height = kOrthoHeight;
-    frame.camera.eye = Eigen::Vector3d(0, 0, 10);
-    frame.camera.target = Eigen::Vector3d::Zero();
-    frame.camera.up = Eigen::Vector3d::UnitY();
+    FrameDesc frame = looking_down_z();
     frame.meshes.push_back({&back, Color{0.1f, 0.9f, 0.1f}, overlay});
     frame.meshes.push_back({&front, Color{0.9f, 0.1f, 0.1f}});
     renderer.draw(frame, kW, kH);

@@ -81,6 +81,21 @@ Result under_xvfb(const TempDir& dir, const std::string& args) {
                    "DISPLAY=:$(cat display) \"$WEDGE\" " + args + "; rc=$?; kill $x; exit $rc");
 }
 
+// Frame 1 of s.json (step 0) as the viewer draws it, and where the body of pure colour `channel` is in it.
+Blob at_start(const TempDir& dir, int channel) {
+  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
+  REQUIRE(first.code == 0);
+  const Blob b = blob(dir.path() / "f1.png", channel);
+  REQUIRE(b.count > 500);
+  return b;
+}
+
+// One line of a --mouse script: frame, cursor, and further fields (",\"left\":true", ..).
+std::string mouse_line(int frame, double x, double y, const std::string& more = "") {
+  return "{\"frame\":" + std::to_string(frame) + ",\"x\":" + std::to_string(x) + ",\"y\":" + std::to_string(y) + more +
+         "}\n";
+}
+
 }  // namespace
 
 TEST_CASE("wedge view: the window shows what the offscreen renderer shows", "[cli][view]") {
@@ -136,17 +151,12 @@ TEST_CASE("wedge view: without a display it exits 2 naming DISPLAY", "[cli][view
 TEST_CASE("wedge view: a scripted mouse grabs a body, drags it and throws it", "[cli][view]") {
   TempDir dir;
   dir.write("s.json", scene(0.0));  // no gravity: a thrown body keeps going
-  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
-  REQUIRE(first.code == 0);
-  const Blob red = blob(dir.path() / "f1.png", 0), green = blob(dir.path() / "f1.png", 1);
-  REQUIRE(red.count > 500);
+  const Blob red = at_start(dir, 0), green = blob(dir.path() / "f1.png", 1);
   // Press on the red tesseract's centre of picture at frame 2, drag 100 px up over frames 3..40, let go at
   // frame 41 (the hand then moves at ~2.6 px per frame).
-  std::string script = "{\"frame\":2,\"x\":" + std::to_string(red.x) + ",\"y\":" + std::to_string(red.y) + ",\"left\":true}\n";
-  for (int f = 3; f <= 40; ++f)
-    script += "{\"frame\":" + std::to_string(f) + ",\"x\":" + std::to_string(red.x) + ",\"y\":" +
-              std::to_string(red.y - 100.0 * (f - 2) / 38) + ",\"left\":true}\n";
-  script += "{\"frame\":41,\"x\":" + std::to_string(red.x) + ",\"y\":" + std::to_string(red.y - 100) + "}\n";
+  std::string script;
+  for (int f = 2; f <= 40; ++f) script += mouse_line(f, red.x, red.y - 100.0 * (f - 2) / 38, ",\"left\":true");
+  script += mouse_line(41, red.x, red.y - 100);
   dir.write("drag.jsonl", script);
   const Result held = under_xvfb(dir, "view s.json --mouse drag.jsonl --frames 41 --screenshot f41.png --size 800x450");
   const Result later = under_xvfb(dir, "view s.json --mouse drag.jsonl --frames 55 --screenshot f55.png --size 800x450");
@@ -169,17 +179,13 @@ TEST_CASE("wedge view: a scripted mouse grabs a body, drags it and throws it", "
 TEST_CASE("wedge view --record: a mouse session replays bit for bit with wedge replay", "[cli][view][replay]") {
   TempDir dir;
   dir.write("s.json", scene(0.0));
-  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
-  REQUIRE(first.code == 0);
-  const Blob red = blob(dir.path() / "f1.png", 0);
-  REQUIRE(red.count > 500);
+  const Blob red = at_start(dir, 0);
   // Grab the red tesseract, drag it up and to the right with a turn (right button), let go.
   std::string script;
   for (int f = 2; f <= 30; ++f)
-    script += "{\"frame\":" + std::to_string(f) + ",\"x\":" + std::to_string(red.x + 2.0 * (f - 2)) + ",\"y\":" +
-              std::to_string(red.y - 2.0 * (f - 2)) + ",\"left\":true,\"right\":" + (f > 15 ? "true" : "false") +
-              "}\n";
-  script += "{\"frame\":31,\"x\":" + std::to_string(red.x + 60) + ",\"y\":" + std::to_string(red.y - 58) + "}\n";
+    script += mouse_line(f, red.x + 2.0 * (f - 2), red.y - 2.0 * (f - 2),
+                         std::string(",\"left\":true,\"right\":") + (f > 15 ? "true" : "false"));
+  script += mouse_line(31, red.x + 60, red.y - 58);
   dir.write("drag.jsonl", script);
   const Result v = under_xvfb(dir, "view s.json --mouse drag.jsonl --frames 50 --record session.jsonl --hash --size 800x450");
   INFO(v.err);
@@ -267,16 +273,12 @@ TEST_CASE("wedge view: a push shows the hand marker, flashes it at the haptic pu
           "[cli][view]") {
   TempDir dir;
   dir.write("s.json", scene(0.0));  // no gravity; red 0.5 m left of green
-  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
-  REQUIRE(first.code == 0);
-  const Blob red = blob(dir.path() / "f1.png", 0);
-  REQUIRE(red.count > 500);
+  const Blob red = at_start(dir, 0);
   // Grab the red tesseract at frame 2, push it right into the green one over frames 3..40, let go at 60.
   std::string script;
   for (int f = 2; f <= 40; ++f)
-    script += "{\"frame\":" + std::to_string(f) + ",\"x\":" + std::to_string(red.x + 110.0 * (f - 2) / 38) +
-              ",\"y\":" + std::to_string(red.y + 20.0 * (f - 2) / 38) + ",\"left\":true}\n";
-  script += "{\"frame\":60,\"x\":" + std::to_string(red.x + 110) + ",\"y\":" + std::to_string(red.y + 20) + "}\n";
+    script += mouse_line(f, red.x + 110.0 * (f - 2) / 38, red.y + 20.0 * (f - 2) / 38, ",\"left\":true");
+  script += mouse_line(60, red.x + 110, red.y + 20);
   dir.write("push.jsonl", script);
   const Result v = under_xvfb(dir, "view s.json --mouse push.jsonl --frames 80 --events ev.jsonl --size 800x450");
   INFO(v.err);
@@ -357,10 +359,8 @@ TEST_CASE("wedge view --contacts marks the contact points where a resting tesser
 TEST_CASE("wedge view: the body under the cursor is named beside it", "[cli][view]") {
   TempDir dir;
   dir.write("s.json", scene(0.0));
-  const Result first = under_xvfb(dir, "view s.json --frames 1 --screenshot f1.png --size 800x450");
-  REQUIRE(first.code == 0);
-  const Blob green = blob(dir.path() / "f1.png", 1);
-  dir.write("on.jsonl", "{\"frame\":1,\"x\":" + std::to_string(green.x) + ",\"y\":" + std::to_string(green.y) + "}\n");
+  const Blob green = at_start(dir, 1);
+  dir.write("on.jsonl", mouse_line(1, green.x, green.y));
   dir.write("off.jsonl", "{\"frame\":1,\"x\":700,\"y\":420}\n");  // the ground in front of the bodies
   REQUIRE(under_xvfb(dir, "view s.json --mouse on.jsonl --frames 2 --screenshot on.png --size 800x450").code == 0);
   REQUIRE(under_xvfb(dir, "view s.json --mouse off.jsonl --frames 2 --screenshot off.png --size 800x450").code == 0);
