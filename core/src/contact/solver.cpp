@@ -11,6 +11,7 @@
 // allows every point to close its gap exactly, u_n >= -max(g, 0)/h, and no more.
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "contact/contact_system.hpp"
@@ -45,6 +46,40 @@ double speed_of(const PointConstraint<N>& p, double impulse) {
   return p.normal_mass > 0.0 ? impulse / p.normal_mass : 0.0;
 }
 
+// The friction impulse in the cone |j| <= limit nearest to the unconstrained one, j*, in the metric of
+// the point's tangential effective mass M = (P K P + n n^T): min (j - j*)^T M (j - j*). This is the exact
+// minimiser of the point's share of the kinetic energy, so the passes over the points are block
+// coordinate descent and settle where friction holds if any distribution of it over the points can.
+// Scaling j* radially instead (the Euclidean projection) is that only when M is isotropic; with 4, 8, 16
+// corners of a box on an incline, whose lightly loaded uphill corners saturate first, the radially
+// scaled impulses stalled short of the cones' total, and a 4D box slid at 0.95 mu_s.
+// KKT: (M + lambda 1) j = M j*, i.e. j(lambda) = (1 + lambda T)^-1 j* with T = M^-1 (tangent_mass), and
+// lambda >= 0 where |j(lambda)| = limit: Newton on 1/|j(lambda)| - 1/limit, which is concave and
+// increasing, converges from lambda = 0 monotonically (the trust-region secular equation).
+template <int N>
+Vec<N> project_to_cone(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& unconstrained, double limit) {
+  const double norm0 = unconstrained.norm();
+  if (limit <= 0.0) return Vec<N>::Zero();
+  Vec<N> j = unconstrained * (limit / norm0);  // (the radial answer: exact when M is isotropic)
+  if (p.tangent_mass.isZero(0.0)) return j;
+  double lambda = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * p.tangent_mass);
+    const Vec<N> x = llt.solve(unconstrained);
+    const double len = x.norm();
+    if (!(len > 0.0)) break;
+    j = x;
+    if (std::abs(len - limit) <= 1e-13 * limit) break;
+    const Vec<N> dx = -llt.solve(p.tangent_mass * x);  // d x / d lambda
+    const double dpsi = -x.dot(dx) / (len * len * len);  // d (1/|x|) / d lambda > 0
+    if (!(dpsi > 0.0)) break;
+    lambda += (1.0 / limit - 1.0 / len) / dpsi;
+    if (!(lambda >= 0.0)) lambda = 0.0;
+  }
+  j -= n * n.dot(j);                 // (tangent to round-off; make it exactly so)
+  return j * (limit / j.norm());     // on the cone's surface
+}
+
 // One point, friction first and the normal last (the normal matters most): the tangential impulse that
 // stops slipping if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when the step
 // began), else mu j_n against the slip; then the normal impulse that brings the normal velocity to the
@@ -71,7 +106,7 @@ PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& 
       // Once the slip has turned against its first direction, that impulse would push it on and do
       // work: such a point is clamped like a sticking one (in heaps it had kept boxes jittering).
       const bool forward = p.sliding && slip.dot(p.slip_direction) > 0.0;
-      next = forward ? Vec<N>(p.slip_direction * -limit) : Vec<N>(next * (limit / std::sqrt(t2)));
+      next = forward ? Vec<N>(p.slip_direction * -limit) : project_to_cone(p, n, next, limit);
     }
     friction = next - old;
     p.tangent_impulse = next;
