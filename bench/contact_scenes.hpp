@@ -16,43 +16,9 @@
 #include <memory>
 #include <vector>
 
-#include "builders.hpp"
-#include "wedge/ga/products.hpp"
-#include "wedge/world.hpp"
+#include "wedge_scenes.hpp"
 
 namespace wedge::bench {
-
-inline constexpr double kDt = 1.0 / 60.0;  // s
-inline constexpr double kGravity = 9.81;   // m/s^2
-inline constexpr double kHalf = 0.5;       // m, the builders' default box half extent
-inline constexpr double kDensity = 1000.0;  // kg/m^n, as in scenes/builders
-inline constexpr double kFriction = 0.6;    // per pair (both engines' mixing rules give 0.6 for 0.6 & 0.6)
-
-// Wedge settings: gravity along -x_1 and the contact defaults, with the given iteration counts.
-template <int N>
-WorldSettings<N> make_settings(bool sleep, int contact_iterations = 10, int position_iterations = 4) {
-  WorldSettings<N> s;
-  s.gravity = -kGravity * Vec<N>::Unit(1);
-  s.contact.allow_sleep = sleep;
-  s.contact.contact_iterations = contact_iterations;
-  s.contact.position_iterations = position_iterations;
-  return s;
-}
-
-// Wedge worlds of the benchmarks: a ground plus the builder's boxes.
-inline World<2> wedge_pyramid(int rows, bool sleep) {
-  World<2> w(make_settings<2>(sleep, 8, 3));
-  scenes::add_ground<2>(w, kFriction);
-  scenes::add_box_pyramid<2>(w, rows, kHalf, kFriction);
-  return w;
-}
-template <int N>
-World<N> wedge_pile(int count, bool sleep, std::uint64_t seed = 1) {
-  World<N> w(make_settings<N>(sleep));
-  scenes::add_ground<N>(w, kFriction);
-  scenes::add_box_pile<N>(w, count, seed, kHalf, kFriction);
-  return w;
-}
 
 // ------------------------------------------------------------------ Box2D 2.4
 // The same pyramid: a static edge along the ground line y = 0 and one b2PolygonShape box per Wedge box,
@@ -167,13 +133,7 @@ int awake_count(const World<N>& w) {
   return n;
 }
 
-// Largest speed of a body's centre (m/s): how settled a scene is.
-template <int N>
-double max_speed(const World<N>& w) {
-  double v = 0.0;
-  for (const Body<N>& b : w.bodies()) v = std::max(v, b.velocity.norm());
-  return v;
-}
+// Largest speed of a box's centre (m/s), as max_speed(World) in wedge_scenes.hpp.
 inline double max_speed(const Box2DScene& s) {
   double v = 0.0;
   for (const b2Body* b : s.boxes) v = std::max(v, double(b->GetLinearVelocity().Length()));

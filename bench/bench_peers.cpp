@@ -1,0 +1,142 @@
+// Wedge beside today's leading engines, in one process (bench/README.md, "Peers: Box2D v3 and Jolt"):
+//   Pyramid2D_{Wedge,Box2Dv3}/<rows>   Box2D's pyramid, 20, 40 and 100 rows (210, 820 and 5,050 boxes)
+//   Pile3D_{Wedge,Jolt}                1,000 boxes dropped in a grid onto the ground (as wedge_bench_contact)
+//   JoltPyramid_{Wedge,Jolt}           Jolt's PerformanceTest pyramid, 1,240 boxes in 15 staggered layers
+// Built only when a peer's source folder is given to CMake (WEDGE_BOX2D_V3_DIR, WEDGE_JOLT_DIR); each
+// engine runs with its own defaults and sleeping off, one thread. One benchmark iteration is one step at
+// 60 Hz; each run first builds the scene and steps it untimed (warm-up), then times a fixed number of
+// steps. Run with --benchmark_enable_random_interleaving=true so that the engines' repetitions alternate.
+//
+// Counters, so that an engine that is fast but lets its scene fall over shows up as such (after the
+// warm-up and the timed steps):
+//   max_speed  m/s, the fastest box's centre        moving  boxes faster than 0.1 m/s
+//   top_dy     m, height of the last box (a pyramid's top) minus its initial height
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "wedge_scenes.hpp"
+#if WEDGE_PEER_BOX2D_V3
+#include "peer_box2d_v3.hpp"
+#endif
+#if WEDGE_PEER_JOLT
+#include "peer_jolt.hpp"
+#endif
+
+namespace {
+
+using namespace wedge;
+using namespace wedge::bench;
+
+constexpr double kMoving = 0.1;  // m/s
+
+struct Run {
+  int warmup = 0, timed = 0;
+};
+// The pyramids start at rest: 2 s settle untimed, 2 s timed. The pile falls for about 2 s and heaps up:
+// 10 s untimed. Jolt's pyramid drops 0.5 m per layer: 2 s untimed.
+constexpr Run kPyramid{120, 120}, kPile{600, 300}, kJoltPyramid{120, 300};
+
+// Warm-up, then the timed steps, then the counters. `Scene` has step(), max_speed(), moving(v), height(k),
+// count() (the peers' wrappers; Wedge's through WedgeScene).
+template <typename Scene>
+void run(benchmark::State& state, Scene& scene, const Run& r) {
+  const double top0 = scene.height(scene.count() - 1);
+  for (int i = 0; i < r.warmup; ++i) scene.step();
+  for (auto _ : state) scene.step();
+  state.counters["max_speed"] = scene.max_speed();
+  state.counters["moving"] = scene.moving(kMoving);
+  state.counters["top_dy"] = scene.height(scene.count() - 1) - top0;
+}
+
+// A Wedge world behind the peers' interface: its dynamic bodies in order.
+template <int N>
+class WedgeScene {
+ public:
+  explicit WedgeScene(World<N> w) : world_(std::move(w)) {
+    for (int i = 0; i < world_.body_count(); ++i)
+      if (world_.bodies()[std::size_t(i)].is_dynamic()) boxes_.push_back(BodyId{std::uint32_t(i)});
+  }
+  void step() { world_.step(kDt); }
+  double max_speed() const { return wedge::bench::max_speed(world_); }
+  int moving(double v) const {
+    int n = 0;
+    for (const BodyId id : boxes_) n += world_.body(id).velocity.norm() > v ? 1 : 0;
+    return n;
+  }
+  double height(std::size_t k) const { return world_.body(boxes_[k]).center[1]; }
+  std::size_t count() const { return boxes_.size(); }
+  const World<N>& world() const { return world_; }
+
+ private:
+  World<N> world_;
+  std::vector<BodyId> boxes_;
+};
+
+World<2> pyramid(int rows) {  // Wedge's defaults (10 contact and 4 position iterations), sleeping off
+  World<2> w(make_settings<2>(false));
+  scenes::add_ground<2>(w, kFriction);
+  scenes::add_box_pyramid<2>(w, rows, kHalf, kFriction);
+  return w;
+}
+
+void Pyramid2D_Wedge(benchmark::State& state) {
+  WedgeScene<2> scene(pyramid(int(state.range(0))));
+  run(state, scene, kPyramid);
+}
+void Pile3D_Wedge(benchmark::State& state) {
+  WedgeScene<3> scene(wedge_pile<3>(1000, false));
+  run(state, scene, kPile);
+}
+void JoltPyramid_Wedge(benchmark::State& state) {
+  WedgeScene<3> scene(wedge_jolt_pyramid());
+  run(state, scene, kJoltPyramid);
+}
+BENCHMARK(Pyramid2D_Wedge)->Arg(20)->Arg(40)->Arg(100)->Iterations(kPyramid.timed)->Unit(benchmark::kMillisecond);
+BENCHMARK(Pile3D_Wedge)->Iterations(kPile.timed)->Unit(benchmark::kMillisecond);
+BENCHMARK(JoltPyramid_Wedge)->Iterations(kJoltPyramid.timed)->Unit(benchmark::kMillisecond);
+
+#if WEDGE_PEER_BOX2D_V3
+void Pyramid2D_Box2Dv3(benchmark::State& state) {
+  Box2DV3Scene scene(pyramid(int(state.range(0))), false);
+  run(state, scene, kPyramid);
+}
+BENCHMARK(Pyramid2D_Box2Dv3)->Arg(20)->Arg(40)->Arg(100)->Iterations(kPyramid.timed)->Unit(benchmark::kMillisecond);
+#endif
+
+#if WEDGE_PEER_JOLT
+// The dynamic bodies of a Wedge 3D world as Jolt boxes.
+std::vector<BoxPose> poses(const World<3>& w) {
+  std::vector<BoxPose> out;
+  for (const Body<3>& b : w.bodies()) {
+    if (!b.is_dynamic()) continue;
+    const Eigen::Quaterniond q(to_matrix(b.rotor));
+    out.push_back({{b.center[0], b.center[1], b.center[2]}, {q.w(), q.x(), q.y(), q.z()}});
+  }
+  return out;
+}
+JoltSettings jolt_settings(double half) {
+  JoltSettings s;
+  s.half = half;
+  s.density = kDensity;
+  s.friction = kFriction;
+  s.gravity = kGravity;
+  s.dt = kDt;
+  return s;
+}
+void Pile3D_Jolt(benchmark::State& state) {
+  JoltScene scene(poses(wedge_pile<3>(1000, false)), jolt_settings(kHalf));
+  run(state, scene, kPile);
+}
+void JoltPyramid_Jolt(benchmark::State& state) {
+  JoltScene scene(poses(wedge_jolt_pyramid()), jolt_settings(1.0));
+  run(state, scene, kJoltPyramid);
+}
+BENCHMARK(Pile3D_Jolt)->Iterations(kPile.timed)->Unit(benchmark::kMillisecond);
+BENCHMARK(JoltPyramid_Jolt)->Iterations(kJoltPyramid.timed)->Unit(benchmark::kMillisecond);
+#endif
+
+}  // namespace
+
+BENCHMARK_MAIN();

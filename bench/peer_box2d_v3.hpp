@@ -1,0 +1,68 @@
+// Box2D v3 (erincatto/box2d, C API) as a peer of wedge_bench_peers, built from a local source checkout
+// (-DWEDGE_BOX2D_V3_DIR=...; never vendored, never needed by CI). The scene copies every box's centre and
+// angle from a Wedge 2D world (wedge_scenes.hpp) and uses Box2D v3's own defaults otherwise: 4 substeps,
+// soft contacts, its solver's relax and restitution passes, one worker thread. The ground is a static box
+// of half size 100 x 1 m under y = 0, as in Box2D's own large_pyramid benchmark.
+#pragma once
+
+#include <box2d/box2d.h>
+
+#include <vector>
+
+#include "wedge_scenes.hpp"
+
+namespace wedge::bench {
+
+class Box2DV3Scene {
+ public:
+  Box2DV3Scene(const World<2>& layout, bool sleep) {
+    b2WorldDef def = b2DefaultWorldDef();
+    def.gravity = b2Vec2{0.0f, float(-kGravity)};
+    def.enableSleep = sleep;
+    world_ = b2CreateWorld(&def);
+    b2BodyDef ground_def = b2DefaultBodyDef();
+    ground_def.position = b2Pos{0.0f, -1.0f};
+    const b2BodyId ground = b2CreateBody(world_, &ground_def);
+    const b2Polygon ground_box = b2MakeBox(100.0f, 1.0f);
+    b2ShapeDef shape = b2DefaultShapeDef();
+    shape.material.friction = float(kFriction);
+    shape.material.restitution = 0.0f;
+    b2CreatePolygonShape(ground, &shape, &ground_box);
+    shape.density = float(kDensity);
+    const b2Polygon box = b2MakeSquare(float(kHalf));
+    for (const Body<2>& b : layout.bodies()) {
+      if (!b.is_dynamic()) continue;
+      const Mat<2> r = to_matrix(b.rotor);
+      b2BodyDef body = b2DefaultBodyDef();
+      body.type = b2_dynamicBody;
+      body.position = b2Pos{float(b.center[0]), float(b.center[1])};
+      body.rotation = b2MakeRot(float(std::atan2(r(1, 0), r(0, 0))));
+      const b2BodyId id = b2CreateBody(world_, &body);
+      b2CreatePolygonShape(id, &shape, &box);
+      boxes_.push_back(id);
+    }
+  }
+  ~Box2DV3Scene() { b2DestroyWorld(world_); }
+  Box2DV3Scene(const Box2DV3Scene&) = delete;
+  Box2DV3Scene& operator=(const Box2DV3Scene&) = delete;
+
+  void step() { b2World_Step(world_, float(kDt), 4); }  // (4 substeps: Box2D v3's recommended default)
+  double max_speed() const {
+    double v = 0.0;
+    for (const b2BodyId id : boxes_) v = std::max(v, double(b2Length(b2Body_GetLinearVelocity(id))));
+    return v;
+  }
+  int moving(double speed) const {
+    int n = 0;
+    for (const b2BodyId id : boxes_) n += b2Length(b2Body_GetLinearVelocity(id)) > speed ? 1 : 0;
+    return n;
+  }
+  double height(std::size_t k) const { return double(b2Body_GetPosition(boxes_[k]).y); }
+  std::size_t count() const { return boxes_.size(); }
+
+ private:
+  b2WorldId world_;
+  std::vector<b2BodyId> boxes_;  // in Wedge's body order (ground excluded)
+};
+
+}  // namespace wedge::bench
