@@ -117,13 +117,7 @@ std::vector<BoxPose> poses(const World<3>& w) {
   return out;
 }
 JoltSettings jolt_settings(double half) {
-  JoltSettings s;
-  s.half = half;
-  s.density = kDensity;
-  s.friction = kFriction;
-  s.gravity = kGravity;
-  s.dt = kDt;
-  return s;
+  return {.half = half, .density = kDensity, .friction = kFriction, .gravity = kGravity, .dt = kDt, .sleep = false};
 }
 void Pile3D_Jolt(benchmark::State& state) {
   JoltScene scene(poses(wedge_pile<3>(1000, false)), jolt_settings(kHalf));
