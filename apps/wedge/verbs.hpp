@@ -79,8 +79,9 @@ struct ReplayOptions {
 CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& options);
 int run_replay(const ReplayOptions& options);
 
-// wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--replay RECORDING...] [--frames N]
-//            [--screenshot FILE.png]
+// wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--play-subdivisions S]
+//            [--replay RECORDING... | --mouse FILE] [--record FILE] [--events FILE] [--contacts] [--hash]
+//            [--frames N --screenshot FILE.png]
 struct ViewOptions {
   std::string scene;
   std::string w, size, subdivisions, play_subdivisions, frames, screenshot, mouse, record, events;

@@ -1,14 +1,18 @@
-// wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--replay RECORDING...]
-//                        [--frames N --screenshot FILE.png]
+// wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--play-subdivisions S]
+//                        [--replay RECORDING... | --mouse FILE] [--record FILE] [--events FILE] [--contacts]
+//                        [--hash] [--frames N --screenshot FILE.png]
 //
 // The desktop viewer: a window (GLFW, OpenGL 3.3 core) drawing the scene's 3D slice with the same renderer
 // as `wedge render`, and a Dear ImGui panel: play, pause, single step, reset, time scale, the slice
-// offsets (w in 4D; two or three in 5D and 6D), the bodies and whether the slice meets them, and the
-// frame time split into physics, slicing and drawing. The camera orbits (right drag), pans (middle drag)
-// and zooms (wheel). The 3D view fills the window right of the panel. --replay drives the scene with recordings through the input layer, as `wedge
-// replay` does. Without a display: --frames N draws N frames (each 1/60 s of simulated time while
-// playing) and --screenshot writes the last one as PNG, for tests and pictures; with no display at all
-// the viewer exits with code 2, naming DISPLAY.
+// offsets (w in 4D; two or three in 5D and 6D), the bodies and whether the slice meets them (a click
+// moves the slice through one), contacts on or off, the phone, the pulse log, and the frame time split
+// into physics, slicing and drawing. The camera orbits (right drag), pans (middle drag) and zooms
+// (wheel); the 3D view fills the window right of the panel. The mouse is a hand of the input layer
+// (grab, drag, turn, throw); --replay drives the scene with recordings instead, as `wedge replay` does.
+// Hands, haptic flashes and contact points are drawn over the bodies (view_overlays.hpp). Without a
+// display: --frames N draws N frames (each 1/60 s of simulated time while playing) and --screenshot
+// writes the last one as PNG, for tests and pictures; with no display at all the viewer exits with code
+// 2, naming DISPLAY.
 //
 // Each frame draws the current state, then advances it, so frame 1 shows step 0: right of the panel, the
 // picture `wedge render --steps 0 --size (W-316)xH` draws.
