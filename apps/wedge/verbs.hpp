@@ -80,7 +80,7 @@ CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& options);
 int run_replay(const ReplayOptions& options);
 
 // wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--play-subdivisions S]
-//            [--replay RECORDING... | --mouse FILE] [--record FILE] [--events FILE] [--contacts] [--hash]
+//            [--replay RECORDING... | --record FILE] [--mouse FILE] [--events FILE] [--contacts] [--hash]
 //            [--frames N --screenshot FILE.png]
 struct ViewOptions {
   std::string scene;

@@ -1,5 +1,5 @@
 // wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--play-subdivisions S]
-//                        [--replay RECORDING... | --mouse FILE] [--record FILE] [--events FILE] [--contacts]
+//                        [--replay RECORDING... | --record FILE] [--mouse FILE] [--events FILE] [--contacts]
 //                        [--hash] [--frames N --screenshot FILE.png]
 //
 // The desktop viewer: a window (GLFW, OpenGL 3.3 core) drawing the scene's 3D slice with the same renderer
