@@ -255,10 +255,11 @@ void MeshSlicer<N>::slice(const Placement<N>& placement, const Hyperplane<N>& pl
   // A chunk is skipped only when its ball lies beyond the plane by a margin far above the round-off of
   // the vertex distances (about 1e-16 of the coordinates), so no cut cell is ever skipped.
   const double margin = 1e-9 * (1.0 + std::abs(b));
+  const double a_len = a.norm();  // (1 to round-off: R^T n)
   for (std::size_t c = 0; c < nc; ++c) {
     if (c % kChunk == 0) {
       const std::size_t k = c / kChunk;
-      if (std::abs(a.dot(chunk_center_[k]) + b) > chunk_radius_[k] * a.norm() + margin) {
+      if (std::abs(a.dot(chunk_center_[k]) + b) > chunk_radius_[k] * a_len + margin) {
         c += kChunk - 1;
         continue;
       }

@@ -65,23 +65,26 @@ void WorldSlices<N>::slice(const World<N>& world, std::vector<DisplayMesh<3>>& o
 }
 
 template <int N>
+Vec<N> WorldSlices<N>::off_flat(const Vec<N>& x) const {
+  // (Subtracting the in-flat part, not |x|^2 - |y|^2: no cancellation for points far along the flat.)
+  const Vec<N> rel = x - flat_.origin;
+  return rel - flat_.frame * (flat_.frame.transpose() * rel);
+}
+
+template <int N>
 bool WorldSlices<N>::misses(const Vec<N>& center, double radius) const {
   // The centre's distance from the flat beyond the bounding radius, with a margin of 1e-9 m so that a mesh
   // vertex exactly on the flat (whose zero-area pieces the slicer would keep) is never culled.
-  const Vec<N> rel = center - flat_.origin;
-  const Vec<N> off = rel - flat_.frame * (flat_.frame.transpose() * rel);
-  return off.norm() > radius + 1e-9;
+  return off_flat(center).norm() > radius + 1e-9;
 }
 
 template <int N>
 std::optional<std::pair<Eigen::Vector3d, double>> WorldSlices<N>::slice_bound(const World<N>& world,
                                                                               std::size_t k) const {
-  const Vec<N> rel = world.body(BodyId{std::uint32_t(entries_[k].body)}).center - flat_.origin;
-  const Eigen::Vector3d y = flat_.frame.transpose() * rel;
-  const double d2 = std::max(0.0, rel.squaredNorm() - y.squaredNorm());
-  const double r2 = entries_[k].radius * entries_[k].radius - d2;
+  const Vec<N>& center = world.body(BodyId{std::uint32_t(entries_[k].body)}).center;
+  const double r2 = entries_[k].radius * entries_[k].radius - off_flat(center).squaredNorm();
   if (!(r2 > 0.0)) return std::nullopt;
-  return std::make_pair(y, std::sqrt(r2));
+  return std::make_pair(to_slice_point(center), std::sqrt(r2));
 }
 
 template <int N>

@@ -64,13 +64,20 @@ Vec<N> project_to_cone(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N
   if (p.tangent_mass.isZero(0.0)) return j;
   double lambda = 0.0;
   for (int it = 0; it < 50; ++it) {
-    const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * p.tangent_mass);
-    const Vec<N> x = llt.solve(unconstrained);
+    // x = (1 + lambda T)^-1 j* and dx = d x / d lambda = -(1 + lambda T)^-1 T x; at lambda = 0 (the first
+    // round) the matrix is the identity, so no factorisation is needed.
+    Vec<N> x = unconstrained, dx;
+    if (lambda > 0.0) {
+      const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * p.tangent_mass);
+      x = llt.solve(unconstrained);
+      dx = -llt.solve(p.tangent_mass * x);
+    } else {
+      dx = -(p.tangent_mass * x);
+    }
     const double len = x.norm();
     if (!(len > 0.0)) break;
     j = x;
     if (std::abs(len - limit) <= 1e-13 * limit) break;
-    const Vec<N> dx = -llt.solve(p.tangent_mass * x);  // d x / d lambda
     const double dpsi = -x.dot(dx) / (len * len * len);  // d (1/|x|) / d lambda > 0
     if (!(dpsi > 0.0)) break;
     lambda += (1.0 / limit - 1.0 / len) / dpsi;

@@ -66,6 +66,8 @@ class WorldSlices {
   std::vector<Entry> entries_;
   std::optional<int> ground_body_;
 
+  // The part of x - origin normal to the 3-flat (world): its length is x's distance from the flat.
+  Vec<N> off_flat(const Vec<N>& x) const;
   // True if the ball of `radius` about `center` (world) lies off the 3-flat: the body there slices to nothing.
   bool misses(const Vec<N>& center, double radius) const;
 };
