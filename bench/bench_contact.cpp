@@ -52,9 +52,7 @@ constexpr double kMovingSpeed = 0.1;  // m/s
 
 template <int N>
 int moving_count(const World<N>& w) {
-  int n = 0;
-  for (const Body<N>& b : w.bodies()) n += b.is_dynamic() && b.velocity.norm() > kMovingSpeed ? 1 : 0;
-  return n;
+  return wedge::bench::moving_count(w, kMovingSpeed);
 }
 int moving_count(const Box2DScene& s) {
   int n = 0;

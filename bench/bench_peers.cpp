@@ -60,11 +60,7 @@ class WedgeScene {
   }
   void step() { world_.step(kDt); }
   double max_speed() const { return wedge::bench::max_speed(world_); }
-  int moving(double v) const {
-    int n = 0;
-    for (const BodyId id : boxes_) n += world_.body(id).velocity.norm() > v ? 1 : 0;
-    return n;
-  }
+  int moving(double v) const { return moving_count(world_, v); }
   double height(std::size_t k) const { return world_.body(boxes_[k]).center[1]; }
   std::size_t count() const { return boxes_.size(); }
   const World<N>& world() const { return world_; }

@@ -70,6 +70,14 @@ inline World<3> wedge_jolt_pyramid() {
   return w;
 }
 
+// Dynamic bodies whose centre moves faster than `speed` (m/s).
+template <int N>
+int moving_count(const World<N>& w, double speed) {
+  int n = 0;
+  for (const Body<N>& b : w.bodies()) n += b.is_dynamic() && b.velocity.norm() > speed ? 1 : 0;
+  return n;
+}
+
 // Largest speed of a body's centre (m/s): how settled a scene is.
 template <int N>
 double max_speed(const World<N>& w) {
