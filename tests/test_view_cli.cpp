@@ -153,6 +153,10 @@ TEST_CASE("wedge view: without a display it exits 2 naming DISPLAY", "[cli][view
   const Result bad_level = dir.run("view s.json --play-subdivisions 0 --frames 1");
   CHECK(bad_level.code == 2);
   CHECK(bad_level.err.find("s.json: --play-subdivisions must be an integer in 1..64") != std::string::npos);
+  const Result same_file = dir.run("view s.json --frames 1 --events x.jsonl --record x.jsonl");
+  CHECK(same_file.code == 2);
+  CHECK(same_file.err.find("s.json: --events must name a file of its own") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path() / "x.jsonl"));
 }
 
 TEST_CASE("wedge view: a scripted mouse grabs a body, drags it and throws it", "[cli][view]") {
