@@ -90,6 +90,10 @@ void check_contact_settings(const ContactSettings& c) {
   if (!finite_nonneg(c.contact_margin)) throw Error("contact.contact_margin must be finite and >= 0 (m)");
   if (c.collision_iterations < 0 || c.contact_iterations < 0 || c.shock_iterations < 0 || c.position_iterations < 0)
     throw Error("contact iteration counts must be >= 0");
+  if (c.substeps < 1 || c.substeps > 64) throw Error("contact.substeps must be in 1..64");
+  if (!finite_nonneg(c.contact_hertz) || !finite_nonneg(c.contact_damping_ratio) || !finite_nonneg(c.contact_push_speed))
+    throw Error("contact.contact_hertz (Hz), contact_damping_ratio and contact_push_speed (m/s) must be finite and >= 0");
+  if (!finite_nonneg(c.restitution_threshold)) throw Error("contact.restitution_threshold must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.face_preference)) throw Error("contact.face_preference must be finite and >= 0 (m)");
   if (!finite_nonneg(c.static_slip_speed)) throw Error("contact.static_slip_speed must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.contact_tolerance)) throw Error("contact.contact_tolerance must be finite and >= 0 (m/s)");
@@ -340,10 +344,14 @@ void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
 template <int N>
 void World<N>::step(double h) {
   find_contacts(h);
-  process_collisions(h);
-  integrate_velocities(h);
-  process_contacts(h);
-  integrate_positions(h);
+  if (settings_.contact.solver == ContactSolver::SoftStep) {
+    soft_step(h);
+  } else {
+    process_collisions(h);
+    integrate_velocities(h);
+    process_contacts(h);
+    integrate_positions(h);
+  }
   update_islands(h);
   report_contact_events();
   clear_forces();
@@ -357,6 +365,20 @@ void World<N>::step(double h) {
 template <int N>
 void World<N>::find_contacts(double h) {
   contact::find_contacts(*contact_, bodies_, shapes_, materials_, settings_.contact, h);
+}
+template <int N>
+void World<N>::soft_step(double h) {
+  const ContactSettings& c = settings_.contact;
+  const double hs = h / c.substeps;
+  contact::prepare_soft_step(*contact_, bodies_, c);
+  for (int i = 0; i < c.substeps; ++i) {
+    integrate_velocities(hs);
+    contact::solve_substep(*contact_, bodies_, c, hs, true);
+    integrate_positions(hs);
+    contact::track_substep_motion(*contact_, bodies_);
+    contact::solve_substep(*contact_, bodies_, c, hs, false);
+  }
+  contact::finish_soft_step(*contact_, bodies_, c);
 }
 template <int N>
 void World<N>::process_collisions(double h) {

@@ -27,9 +27,35 @@ struct Material {
 inline double mix_friction(double a, double b) { return std::sqrt(a * b); }
 inline double mix_restitution(double a, double b) { return std::max(a, b); }
 
+// Which contact solver World::step runs.
+//   SoftStep: Box2D v3's soft step (Catto 2024), sub-stepped with soft contacts and a relax pass, and
+//             restitution applied once at the end (docs/contact.md). Tall stacks and large mass ratios.
+//   Paper:    the paper's section 6 (Guendelman et al. 2003): collision processing on predicted
+//             positions, contact processing, shock propagation and split-impulse position correction.
+enum class ContactSolver { SoftStep, Paper };
+
 // The contact stages of the step. Each field says its unit; the defaults suit bodies of about 0.1-10 m
 // at 60-1000 Hz.
 struct ContactSettings {
+  ContactSolver solver = ContactSolver::SoftStep;
+  // SoftStep: each step is taken as this many sub-steps, each a velocity update, one solve pass with the
+  // soft contacts (warm started), the position update, and one relax pass without the contacts' push.
+  int substeps = 4;
+  // Hz: the soft contacts' natural frequency (pushing out penetration), capped at a quarter of the
+  // sub-step rate; contacts with a static or kinematic body use twice it. Damping ratio: 10 (over-damped).
+  double contact_hertz = 30.0;
+  double contact_damping_ratio = 10.0;
+  // m/s: the fastest a soft contact pushes penetrating bodies apart.
+  double contact_push_speed = 3.0;
+  // m/s: SoftStep applies restitution to points that approached faster than this when the step began.
+  double restitution_threshold = 1.0;
+  // Contact recycling: a pair of flat-faced shapes keeps its contact points (attached to the bodies, the
+  // normal fixed) while their relative motion since the points were found moves no point of them by
+  // more than recycle_distance (m) and neither body has turned by more than recycle_angle (rad); only
+  // the separations are updated. It holds tall stacks (docs/contact.md). 0 turns it off.
+  double recycle_distance = 0.05;
+  double recycle_angle = 0.2;
+  // The remaining fields up to position_iterations are the Paper solver's.
   // m. The narrow phase also reports points up to this far apart, so a contact that closes during the
   // step is processed before it penetrates ("predicted positions", first order in h).
   double contact_margin = 0.02;

@@ -1,16 +1,20 @@
 // The world: bodies, global settings and the time step.
 //
-// World::step(h) runs named stages in a fixed order (Guendelman, Bridson & Fedkiw 2003, as in the
-// paper's section 6; see world.cpp and core/src/contact/):
+// World::step(h) runs named stages in a fixed order (see world.cpp and core/src/contact/). With the
+// default contact solver, the soft step (ContactSettings::solver, docs/contact.md):
 //   find_contacts         broad phase, narrow phase at the current positions, the step's constraints
+//   soft_step             per sub-step of h / substeps: integrate_velocities, solve (soft contacts),
+//                         integrate_positions, relax; then restitution
+//   update_islands        islands of touching bodies; still islands fall asleep
+//   report_contact_events pairs that began or stopped touching
+//   clear_forces
+// With the paper's solver (Guendelman, Bridson & Fedkiw 2003, as in the paper's section 6), the middle
+// stages are instead
 //   process_collisions    restitution impulses for contacts that close within the step
 //   integrate_velocities  forces, gravity, drag; the gyroscopic term implicitly
 //   process_contacts      restitution 0, then shock propagation up the contact graph, then
 //                         split-impulse position correction
 //   integrate_positions   x += h v, R <- exp(-h w / 2) R, then rotor repair
-//   update_islands        islands of touching bodies; still islands fall asleep
-//   report_contact_events pairs that began or stopped touching
-//   clear_forces
 // Input is applied only between steps, through the apply_* calls, grabs and set_gravity (which wake the
 // bodies they move). Bodies are
 // stored in creation order and every loop runs in that order, so the same inputs give bit-identical
@@ -156,6 +160,7 @@ class World {
 
  private:
   void find_contacts(double h);
+  void soft_step(double h);
   void process_collisions(double h);
   void integrate_velocities(double h);
   void process_contacts(double h);

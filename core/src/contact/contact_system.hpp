@@ -41,6 +41,17 @@ struct Pair {
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
   // and their lever arms from a's centre (world frame), to match points whose id changed by place.
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_arm = zero_vectors();
+  // The lever arms of the manifold's points from a's and b's centres (world frame) in this step: equal
+  // to point - centre for a fresh manifold, carried along with each body for a recycled one.
+  std::array<Vec<N>, kMaxManifoldPoints<N>> arm_a = zero_vectors(), arm_b = zero_vectors();
+  // Contact recycling (recycling.cpp): the state when the manifold was last computed, to carry it along
+  // while the bodies barely move relative to each other.
+  bool cached = false;
+  Mat<N> rotation_a = Mat<N>::Identity(), rotation_b = Mat<N>::Identity();  // the bodies' rotations then
+  Vec<N> relative_position = Vec<N>::Zero();       // m, b's centre in a's frame then
+  Mat<N> relative_rotation = Mat<N>::Identity();  // b's rotation in a's frame then
+  std::array<Vec<N>, kMaxManifoldPoints<N>> anchor_a = zero_vectors(), anchor_b = zero_vectors();  // arms then
+  std::array<double, kMaxManifoldPoints<N>> base_gap{};  // m, each point's gap then
   bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }
 
  private:
@@ -66,6 +77,12 @@ struct SolverBody {
   int level = 0;                               // contact-graph level (shock propagation)
   bool frozen = false;                         // infinite mass for the current shock-propagation level
   std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
+  // Soft step: where the body was when the step began, and how far it has moved and turned since
+  // (the turn as a matrix, dq = R R0^-1), so the sub-steps see each contact's current separation.
+  Vec<N> x0 = Vec<N>::Zero();
+  Mat<N> r0_inverse = Mat<N>::Identity();
+  Vec<N> dp = Vec<N>::Zero();
+  Mat<N> dq = Mat<N>::Identity();
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
@@ -92,6 +109,8 @@ struct PointConstraint {
   double normal_total = 0.0;                        // N s, over all stages (events, ContactInfo)
   double warm_normal = 0.0;                         // N s, last step's contact-stage impulses (warm start)
   Vec<N> warm_tangent = Vec<N>::Zero();
+  double base_separation = 0.0;  // m, soft step: gap - n . (rb - ra), so that the current separation is
+                                 // base + n . (dp_b + dq_b rb - dp_a - dq_a ra)
   double pseudo = 0.0;                              // split impulse along the normal
   double pseudo_mass = 0.0;                         // 1 / (n^T K n) of the pair (kept through shock propagation)
 };
@@ -120,6 +139,7 @@ struct Constraint {
   double friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
   int first = 0, count = 0;  // points[first .. first + count)
   int level = 0;             // max of the bodies' levels (shock propagation order)
+  bool soft_static = false;      // soft step: the other body is static or kinematic (stiffer contacts)
   std::uint64_t shock_tick = 0;  // shock propagation: its last visit (see SolverBody::moved)
   double shock_change = 0.0;     // m/s, the largest normal velocity change of that visit
 };
@@ -146,6 +166,7 @@ struct ContactState {
   BroadPhase<N> broad_phase;
   std::vector<int> proxy;                 // per body: broad-phase proxy, -1 without one
   std::vector<Aabb<N>> box;               // per body: tight world box at the last update
+  std::vector<double> radius;             // per body: m, farthest point of its shape from the centre of mass
   std::vector<std::uint32_t> halfspaces;  // bodies whose shape is a half-space
   std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
   std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, merged_pairs;  // scratch for the merge
@@ -188,6 +209,14 @@ struct ContactState {
 template <int N>
 using Shapes = std::vector<std::shared_ptr<const Shape<N>>>;
 
+// recycling.cpp: keep a pair's manifold while the bodies have moved and turned relative to each other by
+// less than the recycle tolerance since it was computed (only separations are updated), or else note the
+// state a fresh manifold was computed in. ra, rb: the bodies' rotation matrices now.
+template <int N>
+bool recycle_manifold(Pair<N>& pair, const Body<N>& a, const Body<N>& b, const Mat<N>& ra, const Mat<N>& rb,
+                      double extent, const ContactSettings& settings);
+template <int N>
+void cache_manifold(Pair<N>& pair, const Body<N>& a, const Body<N>& b, const Mat<N>& ra, const Mat<N>& rb);
 // pairs.cpp
 template <int N>
 void add_body(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index);
@@ -211,6 +240,17 @@ template <int N>
 void warm_start_grabs(ContactState<N>& state);
 template <int N>
 double solve_grabs(ContactState<N>& state);
+// soft_step.cpp: the SoftStep solver's stages; World::step runs, per sub-step, integrate_velocities,
+// solve_substep(use_bias = true), integrate_positions, track_substep_motion and solve_substep(false).
+template <int N>
+void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings);
+template <int N>
+void solve_substep(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
+                   double h, bool use_bias);
+template <int N>
+void track_substep_motion(ContactState<N>& state, const std::vector<Body<N>>& bodies);
+template <int N>
+void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings);
 // islands.cpp
 template <int N>
 void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);

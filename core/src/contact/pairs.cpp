@@ -17,6 +17,27 @@ Transform<N> transform_of(const Body<N>& b) {
   return Transform<N>{b.position(), to_matrix(b.rotor)};
 }
 
+// The distance from the centre of mass to the farthest point of the shape (m): exact over the vertices
+// of a shape with a face lattice, else a bound from its box in its own frame; 0 for a half-space.
+template <int N>
+double shape_radius(const Shape<N>& shape, const Vec<N>& local_center) {
+  double r2 = 0.0;
+  if (const ConvexFeatures<N>* f = shape.features()) {
+    for (const Vec<N>& v : f->vertices) r2 = std::max(r2, (v - local_center).squaredNorm());
+  } else if (shape.bounded()) {
+    const Aabb<N> box = world_aabb<N>(shape, Vec<N>(Vec<N>::Zero()), Mat<N>(Mat<N>::Identity()));
+    const Vec<N> far = (box.lo - local_center).cwiseAbs().cwiseMax((box.hi - local_center).cwiseAbs());
+    r2 = far.squaredNorm();
+  }
+  return std::sqrt(r2);
+}
+
+// Shapes whose contact points stay put on their faces while they touch (see recycling.cpp).
+template <int N>
+bool flat_faced(const Shape<N>& shape) {
+  return shape.features() != nullptr || !shape.bounded();
+}
+
 // Moves the proxies of the bodies that can move, then lists the candidate pairs: the broad phase's,
 // plus each half-space with every dynamic body whose box reaches within the margin of its plane.
 template <int N>
@@ -102,6 +123,11 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
   cs.face_preference = settings.face_preference;
   for (Pair<N>& p : s.pairs) p.updated = false;
   auto active = [&](std::uint32_t i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  const bool recycles = settings.solver == ContactSolver::SoftStep;
+  // How far a point of a body that moves can be from its centre (0 for static bodies).
+  auto extent = [&](const Body<N>& b, std::uint32_t i) {
+    return b.type == BodyType::Static ? 0.0 : s.radius[i];
+  };
   for (bool again = true; again;) {
     again = false;
     for (Pair<N>& p : s.pairs) {
@@ -111,9 +137,17 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
       const bool needed = active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
                           (moving_kinematic(b) && a.is_dynamic());
       if (!needed) continue;
-      cs.contact_margin =
-          settings.contact_margin + h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
-      p.manifold = collide(*shapes[p.a], transform_of(a), *shapes[p.b], transform_of(b), cs);
+      const double reach = h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
+      cs.contact_margin = settings.contact_margin + reach;
+      const Transform<N> ta = transform_of(a), tb = transform_of(b);
+      // Recycled only between slow bodies: a fast one may meet new features within the step.
+      const bool flat = recycles && flat_faced(*shapes[p.a]) && flat_faced(*shapes[p.b]);
+      if (!(flat && reach <= settings.recycle_distance &&
+            recycle_manifold(p, a, b, ta.rotation, tb.rotation, std::max(extent(a, p.a), extent(b, p.b)), settings))) {
+        p.manifold = collide(*shapes[p.a], ta, *shapes[p.b], tb, cs);
+        cache_manifold(p, a, b, ta.rotation, tb.rotation);
+        p.cached = flat;
+      }
       p.updated = true;
       if (p.manifold.count == 0) continue;
       for (const std::uint32_t i : {p.a, p.b})
@@ -215,8 +249,8 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     for (int k = 0; k < c.count; ++k) {
       const ContactPoint<N>& cp = p.manifold.points[k];
       PointConstraint<N> q;
-      q.ra = cp.point - bodies[c.a].center;
-      q.rb = cp.point - bodies[c.b].center;
+      q.ra = p.arm_a[k];
+      q.rb = p.arm_b[k];
       const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
       q.wa = sa.inv_inertia * ja;
       q.wb = sb.inv_inertia * jb;
@@ -254,8 +288,10 @@ void add_body(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shap
   s.proxy.push_back(-1);
   s.box.push_back(Aabb<N>{});
   s.solver_bodies.emplace_back();
+  s.radius.push_back(0.0);
   const Shape<N>* shape = shapes[index].get();
   if (!shape) return;
+  s.radius[index] = shape_radius(*shape, bodies[index].local_center);
   if (!shape->bounded()) {
     s.halfspaces.push_back(std::uint32_t(index));
     return;
@@ -272,7 +308,7 @@ void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shape
   narrow_phase(s, bodies, shapes, settings, h);
   load_solver_bodies(s, bodies);
   build_constraints(s, bodies, materials, settings.static_slip_speed, settings.contact_margin);
-  compute_levels(s, bodies);
+  if (settings.solver == ContactSolver::Paper && settings.shock_iterations > 0) compute_levels(s, bodies);
 }
 
 // A pair is touching when some point received a normal impulse or penetrates; pairs not collided in

@@ -1,0 +1,121 @@
+// Impulse helpers shared by the two contact solvers (solver.cpp: the paper's; soft_step.cpp: the soft
+// step): applying an impulse at a point, friction in the Coulomb cone, and moving velocities and
+// warm-start impulses between the bodies, the solver and the pairs (internal).
+#pragma once
+
+#include <cmath>
+#include <Eigen/Cholesky>
+
+#include "contact/contact_system.hpp"
+
+namespace wedge::contact {
+
+template <int N>
+void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& j) {
+  if (!a.frozen) {
+    a.v -= a.inv_mass * j;
+    a.w.c -= p.wa * j;
+  }
+  if (!b.frozen) {
+    b.v += b.inv_mass * j;
+    b.w.c += p.wb * j;
+  }
+}
+
+// The friction impulse in the cone |j| <= limit nearest to the unconstrained one, j*, in the metric of
+// the point's tangential effective mass M = (P K P + n n^T): min (j - j*)^T M (j - j*). This is the exact
+// minimiser of the point's share of the kinetic energy, so the passes over the points are block
+// coordinate descent and settle where friction holds if any distribution of it over the points can.
+// Scaling j* radially instead (the Euclidean projection) is that only when M is isotropic; with 4, 8, 16
+// corners of a box on an incline, whose lightly loaded uphill corners saturate first, the radially
+// scaled impulses stalled short of the cones' total, and a 4D box slid at 0.95 mu_s.
+// KKT: (M + lambda 1) j = M j*, i.e. j(lambda) = (1 + lambda T)^-1 j* with T = M^-1 (tangent_mass), and
+// lambda >= 0 where |j(lambda)| = limit: Newton on 1/|j(lambda)| - 1/limit, which is concave and
+// increasing, converges from lambda = 0 monotonically (the trust-region secular equation).
+template <int N>
+Vec<N> project_to_cone(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& unconstrained, double limit) {
+  const double norm0 = unconstrained.norm();
+  if (limit <= 0.0) return Vec<N>::Zero();
+  Vec<N> j = unconstrained * (limit / norm0);  // (the radial answer: exact when M is isotropic)
+  if (p.tangent_mass.isZero(0.0)) return j;
+  double lambda = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    // x = (1 + lambda T)^-1 j* and dx = d x / d lambda = -(1 + lambda T)^-1 T x; at lambda = 0 (the first
+    // round) the matrix is the identity, so no factorisation is needed.
+    Vec<N> x = unconstrained, dx;
+    if (lambda > 0.0) {
+      const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * p.tangent_mass);
+      x = llt.solve(unconstrained);
+      dx = -llt.solve(p.tangent_mass * x);
+    } else {
+      dx = -(p.tangent_mass * x);
+    }
+    const double len = x.norm();
+    if (!(len > 0.0)) break;
+    j = x;
+    if (std::abs(len - limit) <= 1e-13 * limit) break;
+    const double dpsi = -x.dot(dx) / (len * len * len);  // d (1/|x|) / d lambda > 0
+    if (!(dpsi > 0.0)) break;
+    lambda += (1.0 / limit - 1.0 / len) / dpsi;
+    if (!(lambda >= 0.0)) lambda = 0.0;
+  }
+  j -= n * n.dot(j);                 // (tangent to round-off; make it exactly so)
+  return j * (limit / j.norm());     // on the cone's surface
+}
+
+// The friction impulse a point should hold after a pass, given its tangential slip velocity: the
+// impulse that stops the slip if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when
+// the step began), else mu j_n against the slip.
+template <int N>
+Vec<N> friction_update(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& slip) {
+  const Vec<N> old = p.tangent_impulse;
+  Vec<N> next = old - p.tangent_mass * slip;
+  const double t2 = next.squaredNorm(), limit = p.friction * p.normal_impulse;
+  if (t2 > limit * limit) {  // (no square root for the usual point that sticks)
+    // Outside the cone. Kinetic friction opposes the slip the point had when the step began
+    // (Coulomb; Guendelman et al.). Not the slip left after the last pass: once nearly stopped, that
+    // points anywhere, and the full mu_k j_n swinging after it shook piles by 0.1 m/s per pass. A
+    // point that was sticking keeps the clamped direction until it slips for real (the clamped
+    // sticking impulse does not oppose the slip: K couples the tangent directions through rotation).
+    // Once the slip has turned against its first direction, that impulse would push it on and do
+    // work: such a point is clamped like a sticking one (in heaps it had kept boxes jittering).
+    const bool forward = p.sliding && slip.dot(p.slip_direction) > 0.0;
+    next = forward ? Vec<N>(p.slip_direction * -limit) : project_to_cone(p, n, next, limit);
+  }
+  return next;
+}
+
+template <int N>
+void load_velocities(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    s.solver_bodies[i].v = bodies[i].velocity;
+    s.solver_bodies[i].w = bodies[i].angular_velocity;
+  }
+}
+
+template <int N>
+void store_velocities(const ContactState<N>& s, std::vector<Body<N>>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies[i].is_dynamic() || !s.awake[i]) continue;
+    bodies[i].velocity = s.solver_bodies[i].v;
+    bodies[i].angular_velocity = s.solver_bodies[i].w;
+  }
+}
+
+// Keeps this step's impulses, per feature, to start the next step from (warm start).
+template <int N>
+void keep_for_warm_start(ContactState<N>& s) {
+  for (const Constraint<N>& c : s.constraints) {
+    Pair<N>& pair = s.pairs[c.pair];
+    pair.warm_count = c.count;
+    for (int k = 0; k < c.count; ++k) {
+      const PointConstraint<N>& p = s.points[c.first + k];
+      pair.warm_id[k] = pair.manifold.points[k].id;
+      pair.warm_arm[k] = p.ra;
+      pair.warm_normal[k] = p.normal_impulse;
+      pair.warm_tangent[k] = p.tangent_impulse;
+    }
+  }
+}
+
+}  // namespace wedge::contact

@@ -1,0 +1,198 @@
+// The soft step (Catto, "Solver2D" 2024 and Box2D v3): each step is taken as sub-steps, and in each
+//   integrate_velocities   gravity and forces (World)
+//   solve (use_bias)       grabs, then contacts: soft normal constraints that push penetration out at
+//                          a spring's rate, friction in the Coulomb cone; warm started
+//   integrate_positions    (World)
+//   relax                  the same passes without the push, so the push leaves no velocity behind
+// and once after the last sub-step restitution, from the approach speeds the step began with.
+//
+// Contacts are found once per step. Within it each point keeps its normal, its lever arms (the
+// Jacobian) and its effective masses; what changes is its separation, computed from how far the two
+// bodies have moved and turned since the step began: s = base + n . (dp_b + dq_b r_b - dp_a - dq_a r_a).
+// A point still apart (s > 0) may close by s in the sub-step and no more (speculative contact); a
+// penetrating one is pushed out by a soft constraint of frequency contact_hertz and damping ratio
+// contact_damping_ratio, never faster than contact_push_speed. The soft constraint is implicit Euler on
+// a damped spring, as in grabs (wedge/grab.hpp): mass_scale and impulse_scale blend the rigid answer
+// with the accumulated impulse so the push is the same for light and heavy bodies.
+//
+// Why this holds stacks: a sub-step of h/4 leaves a quarter of the velocity error for the same passes,
+// and the relax pass removes the push's velocity, so a stack is not thrown up by its own correction;
+// the warm-started impulses of the last sub-step carry the load from one sub-step to the next.
+#include <algorithm>
+#include <cmath>
+
+#include "contact/impulses.hpp"
+#include "instantiate.hpp"
+
+namespace wedge::contact {
+
+namespace {
+
+// Implicit spring coefficients (as b2MakeSoft): bias rate 1/s, and the mass and impulse scales.
+struct Softness {
+  double bias_rate = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+};
+Softness make_soft(double hertz, double zeta, double h) {
+  if (hertz <= 0.0) return {0.0, 1.0, 0.0};
+  const double omega = 2.0 * M_PI * hertz;
+  const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+  return {omega / a1, a2 * a3, a3};
+}
+
+template <int N>
+double current_separation(const SolverBody<N>& a, const SolverBody<N>& b, const PointConstraint<N>& p,
+                          const Vec<N>& n) {
+  return p.base_separation + n.dot(b.dp - a.dp + b.dq * p.rb - a.dq * p.ra);
+}
+
+// Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
+template <int N>
+void warm_start_substep(ContactState<N>& s) {
+  for (const Constraint<N>& c : s.constraints) {
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      p.normal_total += p.normal_impulse;
+      apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+    }
+  }
+}
+
+// One pass over the contacts: per constraint the normal impulses first (soft when use_bias and
+// penetrating), then friction in the cone of the updated normal impulse.
+template <int N>
+void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias,
+                    const Softness& dynamic_soft, const Softness& static_soft) {
+  const double inv_h = 1.0 / h;
+  for (const Constraint<N>& c : s.constraints) {
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    const Vec<N>& n = c.normal;
+    const Softness& soft = c.soft_static ? static_soft : dynamic_soft;
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      const double sep = current_separation(a, b, p, n);
+      double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+      if (sep > 0.0) {
+        bias = sep * inv_h;  // speculative: may close the gap within the sub-step, no more
+      } else if (use_bias) {
+        bias = std::max(soft.mass_scale * soft.bias_rate * sep, -settings.contact_push_speed);
+        mass_scale = soft.mass_scale;
+        impulse_scale = soft.impulse_scale;
+      }
+      const double un = n.dot(relative_velocity(a, b, p));
+      const double next =
+          std::max(p.normal_impulse - p.normal_mass * (mass_scale * un + bias) - impulse_scale * p.normal_impulse, 0.0);
+      const double change = next - p.normal_impulse;
+      p.normal_impulse = next;
+      p.normal_total += change;
+      apply_impulse(a, b, p, Vec<N>(change * n));
+    }
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      if (!(p.friction > 0.0) || (p.normal_impulse <= 0.0 && p.tangent_impulse.isZero(0.0))) continue;
+      const Vec<N> u = relative_velocity(a, b, p);
+      const Vec<N> next = friction_update(p, n, Vec<N>(u - n.dot(u) * n));
+      const Vec<N> change = next - p.tangent_impulse;
+      p.tangent_impulse = next;
+      apply_impulse(a, b, p, change);
+    }
+  }
+}
+
+// Restitution once the sub-steps are done: points that approached faster than the threshold when the
+// step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule).
+template <int N>
+void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
+  for (const Constraint<N>& c : s.constraints) {
+    if (c.restitution <= 0.0) continue;
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      if (p.approach > -settings.restitution_threshold || p.normal_total <= 0.0) continue;
+      const double un = c.normal.dot(relative_velocity(a, b, p));
+      const double next = std::max(p.normal_impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
+      const double change = next - p.normal_impulse;
+      p.normal_impulse = next;
+      p.normal_total += change;
+      apply_impulse(a, b, p, Vec<N>(change * c.normal));
+    }
+  }
+}
+
+}  // namespace
+
+template <int N>
+void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    SolverBody<N>& sb = s.solver_bodies[i];
+    sb.x0 = bodies[i].center;
+    sb.r0_inverse = to_matrix(bodies[i].rotor).transpose();
+    sb.dp.setZero();
+    sb.dq.setIdentity();
+  }
+  for (Constraint<N>& c : s.constraints) {
+    c.soft_static = !(s.solver_bodies[c.a].inv_mass > 0.0 && s.solver_bodies[c.b].inv_mass > 0.0);
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
+      p.normal_impulse = settings.warm_start ? p.warm_normal : 0.0;
+      p.tangent_impulse = settings.warm_start ? p.warm_tangent : Vec<N>::Zero();
+      p.normal_total = 0.0;
+    }
+  }
+}
+
+template <int N>
+void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h,
+                   bool use_bias) {
+  bool grabs = false;
+  if (use_bias) {
+    grabs = prepare_grabs(s, bodies, h);
+    if (s.constraints.empty() && !grabs) return;
+    load_velocities(s, bodies);
+    if (grabs) warm_start_grabs(s);
+    warm_start_substep(s);
+  } else {
+    grabs = !s.driven.empty();
+    if (s.constraints.empty() && !grabs) return;
+  }
+  const double hertz = std::min(settings.contact_hertz, 0.125 / h);
+  const Softness dynamic_soft = make_soft(hertz, settings.contact_damping_ratio, h);
+  const Softness static_soft = make_soft(2.0 * hertz, settings.contact_damping_ratio, h);
+  if (grabs) solve_grabs(s);
+  solve_contacts(s, settings, h, use_bias, dynamic_soft, static_soft);
+  store_velocities(s, bodies);
+}
+
+template <int N>
+void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  if (s.constraints.empty()) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].type == BodyType::Static || !s.awake[i]) continue;
+    SolverBody<N>& sb = s.solver_bodies[i];
+    sb.dp = bodies[i].center - sb.x0;
+    sb.dq = to_matrix(bodies[i].rotor) * sb.r0_inverse;
+  }
+}
+
+template <int N>
+void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings) {
+  if (s.constraints.empty()) return;
+  load_velocities(s, bodies);
+  apply_restitution(s, settings);
+  keep_for_warm_start(s);
+  store_velocities(s, bodies);
+}
+
+#define WEDGE_INSTANTIATE(N)                                                                                   \
+  template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&);   \
+  template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
+  template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
+  template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
+#undef WEDGE_INSTANTIATE
+
+}  // namespace wedge::contact
