@@ -370,7 +370,7 @@ template <int N>
 void World<N>::soft_step(double h) {
   const ContactSettings& c = settings_.contact;
   const double hs = h / c.substeps;
-  contact::prepare_soft_step(*contact_, bodies_, c);
+  contact::prepare_soft_step(*contact_, bodies_, c, hs);
   for (int i = 0; i < c.substeps; ++i) {
     integrate_velocities(hs);
     contact::solve_substep(*contact_, bodies_, c, hs, true);

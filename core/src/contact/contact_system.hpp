@@ -139,7 +139,6 @@ struct Constraint {
   double friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
   int first = 0, count = 0;  // points[first .. first + count)
   int level = 0;             // max of the bodies' levels (shock propagation order)
-  bool soft_static = false;      // soft step: the other body is static or kinematic (stiffer contacts)
   std::uint64_t shock_tick = 0;  // shock propagation: its last visit (see SolverBody::moved)
   double shock_change = 0.0;     // m/s, the largest normal velocity change of that visit
 };
@@ -175,6 +174,7 @@ struct ContactState {
   std::vector<SolverBody<N>> solver_bodies;  // per body
   std::vector<Constraint<N>> constraints;    // in pair order
   std::vector<PointConstraint<N>> points;
+  double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
   std::vector<int> shock_order;  // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
 
@@ -243,7 +243,8 @@ double solve_grabs(ContactState<N>& state);
 // soft_step.cpp: the SoftStep solver's stages; World::step runs, per sub-step, integrate_velocities,
 // solve_substep(use_bias = true), integrate_positions, track_substep_motion and solve_substep(false).
 template <int N>
-void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings);
+void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
+                       double h);
 template <int N>
 void solve_substep(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
                    double h, bool use_bias);

@@ -62,14 +62,12 @@ void warm_start_substep(ContactState<N>& s) {
 // One pass over the contacts: per constraint the normal impulses first (soft when use_bias and
 // penetrating), then friction in the cone of the updated normal impulse.
 template <int N>
-void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias,
-                    const Softness& dynamic_soft, const Softness& static_soft) {
+void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
   const double inv_h = 1.0 / h;
   for (const Constraint<N>& c : s.constraints) {
     SolverBody<N>& a = s.solver_bodies[c.a];
     SolverBody<N>& b = s.solver_bodies[c.b];
     const Vec<N>& n = c.normal;
-    const Softness& soft = c.soft_static ? static_soft : dynamic_soft;
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
       const double sep = current_separation(a, b, p, n);
@@ -77,9 +75,9 @@ void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double 
       if (sep > 0.0) {
         bias = sep * inv_h;  // speculative: may close the gap within the sub-step, no more
       } else if (use_bias) {
-        bias = std::max(soft.mass_scale * soft.bias_rate * sep, -settings.contact_push_speed);
-        mass_scale = soft.mass_scale;
-        impulse_scale = soft.impulse_scale;
+        bias = std::max(s.soft_mass_scale * s.soft_bias_rate * sep, -settings.contact_push_speed);
+        mass_scale = s.soft_mass_scale;
+        impulse_scale = s.soft_impulse_scale;
       }
       const double un = n.dot(relative_velocity(a, b, p));
       const double next =
@@ -125,7 +123,8 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
 }  // namespace
 
 template <int N>
-void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings) {
+void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
+                       double h) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     SolverBody<N>& sb = s.solver_bodies[i];
     sb.x0 = bodies[i].center;
@@ -133,8 +132,13 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     sb.dp.setZero();
     sb.dq.setIdentity();
   }
+  // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
+  // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
+  const Softness soft = make_soft(std::min(settings.contact_hertz, 0.125 / h), settings.contact_damping_ratio, h);
+  s.soft_bias_rate = soft.bias_rate;
+  s.soft_mass_scale = soft.mass_scale;
+  s.soft_impulse_scale = soft.impulse_scale;
   for (Constraint<N>& c : s.constraints) {
-    c.soft_static = !(s.solver_bodies[c.a].inv_mass > 0.0 && s.solver_bodies[c.b].inv_mass > 0.0);
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
       p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
@@ -159,11 +163,8 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
     grabs = !s.driven.empty();
     if (s.constraints.empty() && !grabs) return;
   }
-  const double hertz = std::min(settings.contact_hertz, 0.125 / h);
-  const Softness dynamic_soft = make_soft(hertz, settings.contact_damping_ratio, h);
-  const Softness static_soft = make_soft(2.0 * hertz, settings.contact_damping_ratio, h);
   if (grabs) solve_grabs(s);
-  solve_contacts(s, settings, h, use_bias, dynamic_soft, static_soft);
+  solve_contacts(s, settings, h, use_bias);
   store_velocities(s, bodies);
 }
 
@@ -188,7 +189,7 @@ void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
 }
 
 #define WEDGE_INSTANTIATE(N)                                                                                   \
-  template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&);   \
+  template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
   template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);
