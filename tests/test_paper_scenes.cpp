@@ -83,13 +83,22 @@ TEST_CASE("fig2: the duocylinder hits the balls, nothing falls through the groun
 
 TEST_CASE("the 20-row box pyramids rest without collapsing (2D and 3D)", "[scenes][contact]") {
   auto check = [](auto world, double h) {
+    constexpr int N = decltype(world)::dimension;
+    const double y0 = world.bodies().back().center[1];
+    for (int i = 0; i < int(2.0 / h); ++i) world.step(h);
+    // The soft contacts settle by their springs' compression within 2 s; a pyramid sinks less than a
+    // 20-box tower, whose joints carry more per point (drift::tower_sag: 3.5 cm in 2D, 2.8 cm in 3D).
+    const double sag = y0 - world.bodies().back().center[1];
+    const double tower = drift::tower_sag<N>(20, world.settings().contact, h);
     const auto start = drift::centres(world);
-    for (int i = 0; i < int(10.0 / h); ++i) world.step(h);
+    for (int i = int(2.0 / h); i < int(10.0 / h); ++i) world.step(h);
     const double moved = drift::largest(world, start);
-    INFO("largest drift after 10 s: " << moved << " m");
-    // Resting: no box moved more than 2 mm (a collapse moves the top by metres; a warm start that loses
-    // points when the narrow phase swaps reference faces rocks the 2D pyramid by 6 mm; now 0.3 mm).
-    CHECK(moved < 0.002);
+    INFO(N << "D: sag " << sag << " m (20-box tower: " << tower << " m), largest drift from 2 s to 10 s: " << moved << " m");
+    CHECK(sag > 0.0);
+    CHECK(sag < tower);
+    // Resting: no box moves more than 1 mm once settled (a collapse moves the top by metres; a warm
+    // start that loses points when the narrow phase swaps reference faces rocked the 2D pyramid by 6 mm).
+    CHECK(moved < 0.001);
   };
   double h = 0.0;
   {
@@ -116,11 +125,11 @@ TEST_CASE("default (the main job): three bodies thrown up land, come to rest on 
     w.step(h);
     for (int b = 1; b < 4; ++b)
       top[std::size_t(b)] = std::max(top[std::size_t(b)], w.body(BodyId{std::uint32_t(b)}).center[1]);
-    if (i == 599)  // the main job's last frame: nothing moves faster than 1 cm/s (the duocylinder still
-      for (int b = 1; b < 4; ++b) {  // rocks at 5 mm/s and falls asleep about 2 s later)
+    if (i == 599)  // the main job's last frame: nothing moves faster than 3 cm/s (the duocylinder still
+      for (int b = 1; b < 4; ++b) {  // rocks on its round rim at 1.5 cm/s and falls asleep before 10 s)
         INFO(w.name(BodyId{std::uint32_t(b)}) << " at 5 s");
-        CHECK(w.body(BodyId{std::uint32_t(b)}).velocity.norm() < 1e-2);
-        CHECK(w.body(BodyId{std::uint32_t(b)}).angular_velocity.norm() < 2e-2);
+        CHECK(w.body(BodyId{std::uint32_t(b)}).velocity.norm() < 3e-2);
+        CHECK(w.body(BodyId{std::uint32_t(b)}).angular_velocity.norm() < 5e-2);
       }
   }
   const auto chain = slicing::SliceChain<4>::axes({0.0});

@@ -94,6 +94,8 @@ void check_contact_settings(const ContactSettings& c) {
   if (!finite_nonneg(c.contact_hertz) || !finite_nonneg(c.contact_damping_ratio) || !finite_nonneg(c.contact_push_speed))
     throw Error("contact.contact_hertz (Hz), contact_damping_ratio and contact_push_speed (m/s) must be finite and >= 0");
   if (!finite_nonneg(c.restitution_threshold)) throw Error("contact.restitution_threshold must be finite and >= 0 (m/s)");
+  if (!finite_nonneg(c.recycle_distance) || !finite_nonneg(c.recycle_angle))
+    throw Error("contact.recycle_distance (m) and recycle_angle (rad) must be finite and >= 0");
   if (!finite_nonneg(c.face_preference)) throw Error("contact.face_preference must be finite and >= 0 (m)");
   if (!finite_nonneg(c.static_slip_speed)) throw Error("contact.static_slip_speed must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.contact_tolerance)) throw Error("contact.contact_tolerance must be finite and >= 0 (m/s)");

@@ -105,6 +105,26 @@ int read_count(ObjectReader& obj, const std::string& key, int fallback) {
 ContactSettings read_contact_settings(const Node& node) {
   ObjectReader obj(node);
   ContactSettings c;
+  if (auto n = obj.optional("solver")) {
+    const std::string m = n->string();
+    if (m == "soft_step")
+      c.solver = ContactSolver::SoftStep;
+    else if (m == "paper")
+      c.solver = ContactSolver::Paper;
+    else
+      n->fail("must be \"soft_step\" or \"paper\" (got \"" + m + "\")");
+  }
+  if (auto n = obj.optional("substeps")) {
+    const std::int64_t v = n->integer();
+    if (v < 1 || v > 64) n->fail("must be an integer in 1..64 (got " + n->json().dump() + ")");
+    c.substeps = int(v);
+  }
+  c.contact_hertz = read_ranged(obj, "contact_hertz", c.contact_hertz, 0.0, 1e6, ">= 0 Hz");
+  c.contact_damping_ratio = read_ranged(obj, "contact_damping_ratio", c.contact_damping_ratio, 0.0, 1e6, ">= 0");
+  c.contact_push_speed = read_ranged(obj, "contact_push_speed", c.contact_push_speed, 0.0, 1e6, ">= 0 m/s");
+  c.restitution_threshold = read_ranged(obj, "restitution_threshold", c.restitution_threshold, 0.0, 1e6, ">= 0 m/s");
+  c.recycle_distance = read_ranged(obj, "recycle_distance", c.recycle_distance, 0.0, 1e3, "in [0, 1000] m");
+  c.recycle_angle = read_ranged(obj, "recycle_angle", c.recycle_angle, 0.0, 3.2, "in [0, 3.2] rad");
   c.contact_margin = read_ranged(obj, "contact_margin", c.contact_margin, 0.0, 1e3, "in [0, 1000] m");
   c.face_preference = read_ranged(obj, "face_preference", c.face_preference, 0.0, 1e3, "in [0, 1000] m");
   c.static_slip_speed = read_ranged(obj, "static_slip_speed", c.static_slip_speed, 0.0, 1e6, ">= 0 m/s");

@@ -77,6 +77,7 @@ struct ContactState;
 template <int N>
 class World {
  public:
+  static constexpr int dimension = N;
   explicit World(const WorldSettings<N>& settings = {});
   ~World();
   World(const World& other);
