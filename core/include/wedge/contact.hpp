@@ -57,7 +57,9 @@ struct ContactSettings {
   // the separations are updated. It holds tall stacks (docs/contact.md). 0 turns it off.
   double recycle_distance = 0.05;
   double recycle_angle = 0.2;
-  // The remaining fields up to position_iterations are the Paper solver's.
+  // Both solvers: contact_margin, face_preference, static_slip_speed, warm_start and the sleep settings.
+  // The paper's solver only: collision_iterations, contact_iterations, contact_tolerance, the shock
+  // settings, linear_slop, position_correction and position_iterations.
   // m. The narrow phase also reports points up to this far apart, so a contact that closes during the
   // step is processed before it penetrates ("predicted positions", first order in h).
   double contact_margin = 0.02;

@@ -102,6 +102,19 @@ void store_velocities(const ContactState<N>& s, std::vector<Body<N>>& bodies) {
   }
 }
 
+// Applies every point's accumulated impulses, normal and friction, to the solver bodies (warm start).
+template <int N>
+void apply_accumulated(ContactState<N>& s) {
+  for (const Constraint<N>& c : s.constraints) {
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      const PointConstraint<N>& p = s.points[k];
+      apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+    }
+  }
+}
+
 // Keeps this step's impulses, per feature, to start the next step from (warm start).
 template <int N>
 void keep_for_warm_start(ContactState<N>& s) {

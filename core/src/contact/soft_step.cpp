@@ -48,15 +48,8 @@ double current_separation(const SolverBody<N>& a, const SolverBody<N>& b, const 
 // Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
-  for (const Constraint<N>& c : s.constraints) {
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      p.normal_total += p.normal_impulse;
-      apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
-    }
-  }
+  for (PointConstraint<N>& p : s.points) p.normal_total += p.normal_impulse;
+  apply_accumulated(s);
 }
 
 // One pass over the contacts: per constraint the normal impulses first (soft when use_bias and

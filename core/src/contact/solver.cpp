@@ -276,16 +276,11 @@ void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const 
 // Starts every point from the impulse its features received in the last step (applied at once).
 template <int N>
 void warm_start(ContactState<N>& s) {
-  for (const Constraint<N>& c : s.constraints) {
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      p.normal_impulse = p.warm_normal;
-      p.tangent_impulse = p.warm_tangent;
-      apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
-    }
+  for (PointConstraint<N>& p : s.points) {
+    p.normal_impulse = p.warm_normal;
+    p.tangent_impulse = p.warm_tangent;
   }
+  apply_accumulated(s);
 }
 
 template <int N>
