@@ -19,6 +19,11 @@ template <class M>
 bool finite(const M& m) {
   return m.allFinite();
 }
+// A multiple of the identity, exactly (the inertia of a cube or a ball in any n).
+template <class M>
+bool isotropic(const M& m) {
+  return m == M(m(0, 0) * M::Identity());
+}
 }  // namespace
 
 template <int N>
@@ -352,7 +357,7 @@ void World<N>::step(double h) {
     process_collisions(h);
     integrate_velocities(h);
     process_contacts(h);
-    integrate_positions(h);
+    integrate_positions(h, true);
   }
   update_islands(h);
   report_contact_events();
@@ -376,7 +381,7 @@ void World<N>::soft_step(double h) {
   for (int i = 0; i < c.substeps; ++i) {
     integrate_velocities(hs);
     contact::solve_substep(*contact_, bodies_, c, hs, true);
-    integrate_positions(hs);
+    integrate_positions(hs, i == c.substeps - 1);
     contact::track_substep_motion(*contact_, bodies_);
     contact::solve_substep(*contact_, bodies_, c, hs, false);
   }
@@ -408,10 +413,15 @@ void World<N>::integrate_velocities(double h) {
     if (!b.is_dynamic() || !contact_->awake[i]) continue;
     b.velocity += h * (settings_.gravity + b.force * b.inv_mass);
     // In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
-    Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
-    wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
-    if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, settings_.gyroscopic_method);
-    b.angular_velocity = rotate(b.rotor, wb);
+    // Without a torque, a body whose inertia is isotropic (a cube, a ball) keeps its w exactly: w x I w
+    // = 0, so the frame change and the gyroscopic solve are skipped (most of a pile's bodies).
+    const bool torque = !b.torque.c.isZero(0.0);
+    if (torque || (settings_.gyroscopic && !isotropic(b.inertia))) {
+      Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
+      if (torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
+      if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, settings_.gyroscopic_method);
+      b.angular_velocity = rotate(b.rotor, wb);
+    }
     b.velocity *= 1.0 / (1.0 + h * b.linear_drag);
     b.angular_velocity *= 1.0 / (1.0 + h * b.angular_drag);
   }
@@ -419,10 +429,10 @@ void World<N>::integrate_velocities(double h) {
 
 // Position half, with the new velocities plus the split-impulse pseudo velocities of position
 // correction: x += h v, R <- exp(-h w/2) R (exact for constant w over the step), and every
-// rotor_repair_interval steps R is rebuilt from unit-vector factors.
+// rotor_repair_interval steps (at the step's last position update) R is rebuilt from unit-vector factors.
 template <int N>
-void World<N>::integrate_positions(double h) {
-  const bool repair_now = (steps_ + 1) % settings_.rotor_repair_interval == 0;
+void World<N>::integrate_positions(double h, bool last_of_step) {
+  const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body<N>& b = bodies_[i];
     if (b.type == BodyType::Static || !contact_->awake[i]) continue;

@@ -111,6 +111,10 @@ struct PointConstraint {
   Vec<N> warm_tangent = Vec<N>::Zero();
   double base_separation = 0.0;  // m, soft step: gap - n . (rb - ra), so that the current separation is
                                  // base + n . (dp_b + dq_b rb - dp_a - dq_a ra)
+  double separation = 0.0;       // m, soft step: that separation after the last position update
+  // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
+  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb, wa, wb).
+  Eigen::Matrix<double, kBiv<N>, 1> jn_a, jn_b, dn_a, dn_b;
   double pseudo = 0.0;                              // split impulse along the normal
   double pseudo_mass = 0.0;                         // 1 / (n^T K n) of the pair (kept through shock propagation)
 };
@@ -172,7 +176,10 @@ struct ContactState {
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
 
   std::vector<SolverBody<N>> solver_bodies;  // per body
-  std::vector<Constraint<N>> constraints;    // in pair order
+  std::vector<Constraint<N>> constraints;    // in pair order (the paper's solver) or colour order (soft step)
+  std::vector<int> constraint_pairs;         // the pairs that make them, in that order
+  std::vector<std::uint32_t> colour_mask;    // per body: the colours its constraints took this step
+  std::vector<int> colour_of, colour_order;  // colouring scratch
   std::vector<PointConstraint<N>> points;
   double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
   std::vector<int> shock_order;  // constraints sorted by level (stable)

@@ -2,6 +2,7 @@
 // positions (with the speculative margin), waking islands that are touched, the step's constraints; and
 // the contact events after the step.
 #include <algorithm>
+#include <bit>
 
 #include <Eigen/LU>
 
@@ -211,14 +212,46 @@ void warm_matches(const Pair<N>& p, const Vec<N>& centre_a, double distance,
   }
 }
 
+// Graph colouring (Box2D v3's constraint graph): each constraint takes the lowest colour that neither of
+// its moving bodies has yet, and the constraints are solved colour by colour, in pair order within a
+// colour. No two constraints of a colour share a moving body, so consecutive ones are independent and
+// the processor overlaps them instead of waiting on one body's velocities. Static and sleeping bodies
+// are only read and take no colour. A body in more than kColours constraints sends the rest to a last,
+// uncoloured group. Deterministic: a function of the pair order alone.
+template <int N>
+void colour_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  constexpr int kColours = 32;
+  s.colour_mask.assign(bodies.size(), 0);
+  s.colour_of.resize(s.constraint_pairs.size());
+  std::array<int, kColours + 3> start{};
+  for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
+    const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
+    const bool da = bodies[p.a].is_dynamic() && s.awake[p.a], db = bodies[p.b].is_dynamic() && s.awake[p.b];
+    const std::uint32_t used = (da ? s.colour_mask[p.a] : 0u) | (db ? s.colour_mask[p.b] : 0u);
+    const int c = used == ~0u ? kColours : std::countr_one(used);
+    if (c < kColours) {
+      if (da) s.colour_mask[p.a] |= 1u << c;
+      if (db) s.colour_mask[p.b] |= 1u << c;
+    }
+    s.colour_of[k] = c;
+    ++start[c + 2];
+  }
+  for (int c = 2; c < kColours + 3; ++c) start[c] += start[c - 1];  // start[c + 1]: where colour c begins
+  s.colour_order.resize(s.constraint_pairs.size());
+  for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k)
+    s.colour_order[start[s.colour_of[k] + 1]++] = s.constraint_pairs[k];
+  s.constraint_pairs.swap(s.colour_order);
+}
+
 // One constraint per pair with contact points and an awake dynamic body. Each point keeps its lever
 // arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper section 6), and takes the
 // static friction coefficient if it was not slipping at the start of the step, else the kinetic one.
 template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
-                       double slip_speed, double match_distance) {
+                       double slip_speed, double match_distance, bool colour) {
   s.constraints.clear();
   s.points.clear();
+  s.constraint_pairs.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
     p.constraint = -1;
@@ -229,7 +262,11 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     }
     p.normal_impulse.fill(0.0);
     const bool da = bodies[p.a].is_dynamic() && s.awake[p.a], db = bodies[p.b].is_dynamic() && s.awake[p.b];
-    if (!da && !db) continue;
+    if (da || db) s.constraint_pairs.push_back(int(pi));
+  }
+  if (colour) colour_constraints(s, bodies);
+  for (const int pi : s.constraint_pairs) {
+    Pair<N>& p = s.pairs[pi];
     Constraint<N> c;
     c.pair = int(pi);
     c.a = int(p.a);
@@ -258,6 +295,10 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
           q, Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb),
           c.normal);
       q.pseudo_mass = q.normal_mass;
+      q.jn_a = ja * c.normal;
+      q.jn_b = jb * c.normal;
+      q.dn_a = q.wa * c.normal;
+      q.dn_b = q.wb * c.normal;
       q.gap = -cp.depth;
       const Vec<N> u = relative_velocity(sa, sb, q);
       q.approach = c.normal.dot(u);
@@ -307,7 +348,8 @@ void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shape
   merge_pairs(s, bodies);
   narrow_phase(s, bodies, shapes, settings, h);
   load_solver_bodies(s, bodies);
-  build_constraints(s, bodies, materials, settings.static_slip_speed, settings.contact_margin);
+  build_constraints(s, bodies, materials, settings.static_slip_speed, settings.contact_margin,
+                    settings.solver == ContactSolver::SoftStep);
   if (settings.solver == ContactSolver::Paper && settings.shock_iterations > 0) compute_levels(s, bodies);
 }
 

@@ -39,10 +39,18 @@ Softness make_soft(double hertz, double zeta, double h) {
   return {omega / a1, a2 * a3, a3};
 }
 
+// An impulse of `change` along the normal at the point (apply_impulse through the normal's rows).
 template <int N>
-double current_separation(const SolverBody<N>& a, const SolverBody<N>& b, const PointConstraint<N>& p,
-                          const Vec<N>& n) {
-  return p.base_separation + n.dot(b.dp - a.dp + b.dq * p.rb - a.dq * p.ra);
+void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& n,
+                          double change) {
+  if (!a.frozen) {
+    a.v -= (a.inv_mass * change) * n;
+    a.w.c -= change * p.dn_a;
+  }
+  if (!b.frozen) {
+    b.v += (b.inv_mass * change) * n;
+    b.w.c += change * p.dn_b;
+  }
 }
 
 // Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
@@ -63,7 +71,7 @@ void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double 
     const Vec<N>& n = c.normal;
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
-      const double sep = current_separation(a, b, p, n);
+      const double sep = p.separation;
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
       if (sep > 0.0) {
         bias = sep * inv_h;  // speculative: may close the gap within the sub-step, no more
@@ -72,13 +80,13 @@ void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double 
         mass_scale = s.soft_mass_scale;
         impulse_scale = s.soft_impulse_scale;
       }
-      const double un = n.dot(relative_velocity(a, b, p));
+      const double un = n.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
       const double next =
           std::max(p.normal_impulse - p.normal_mass * (mass_scale * un + bias) - impulse_scale * p.normal_impulse, 0.0);
       const double change = next - p.normal_impulse;
       p.normal_impulse = next;
       p.normal_total += change;
-      apply_impulse(a, b, p, Vec<N>(change * n));
+      apply_normal_impulse(a, b, p, n, change);
     }
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
@@ -103,12 +111,12 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
       if (p.approach > -settings.restitution_threshold || p.normal_total <= 0.0) continue;
-      const double un = c.normal.dot(relative_velocity(a, b, p));
+      const double un = c.normal.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
       const double next = std::max(p.normal_impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
       const double change = next - p.normal_impulse;
       p.normal_impulse = next;
       p.normal_total += change;
-      apply_impulse(a, b, p, Vec<N>(change * c.normal));
+      apply_normal_impulse(a, b, p, c.normal, change);
     }
   }
 }
@@ -124,6 +132,9 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     sb.r0_inverse = to_matrix(bodies[i].rotor).transpose();
     sb.dp.setZero();
     sb.dq.setIdentity();
+    // Bodies that do not move are only read: writing their unchanged velocities would chain every
+    // contact with the ground through one memory location.
+    sb.frozen = !(bodies[i].is_dynamic() && s.awake[i]);
   }
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
@@ -135,6 +146,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
       p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
+      p.separation = p.gap;
       p.normal_impulse = settings.warm_start ? p.warm_normal : 0.0;
       p.tangent_impulse = settings.warm_start ? p.warm_tangent : Vec<N>::Zero();
       p.normal_total = 0.0;
@@ -169,6 +181,17 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
     SolverBody<N>& sb = s.solver_bodies[i];
     sb.dp = bodies[i].center - sb.x0;
     sb.dq = to_matrix(bodies[i].rotor) * sb.r0_inverse;
+  }
+  // s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra: the turned normal once per pair.
+  for (const Constraint<N>& c : s.constraints) {
+    const SolverBody<N>& a = s.solver_bodies[c.a];
+    const SolverBody<N>& b = s.solver_bodies[c.b];
+    const double moved = c.normal.dot(b.dp - a.dp);
+    const Vec<N> na = a.dq.transpose() * c.normal, nb = b.dq.transpose() * c.normal;
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      p.separation = p.base_separation + moved + nb.dot(p.rb) - na.dot(p.ra);
+    }
   }
 }
 
