@@ -7,8 +7,9 @@
 //   update_islands     islands.cpp    islands of touching bodies, sleeping, the contact graph's levels
 //   report_events      pairs.cpp      began/stopped touching, sorted by pair
 // Grabs (grab.cpp) are solved inside process_contacts, before the contacts in every pass.
-// Everything runs in creation order of the bodies and sorted order of the pairs, so a step is a
-// function of the state alone (bit-identical on every run).
+// Everything runs in creation order of the bodies and sorted order of the pairs (the soft step's
+// constraints in colour order, itself a function of the pair order), so a step is a function of the
+// state alone (bit-identical on every run).
 #pragma once
 
 #include <cmath>
