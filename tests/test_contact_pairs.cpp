@@ -151,7 +151,7 @@ TEST_CASE("a plank under 40 boxes (more constraints than colours) holds them all
   for (int i = 0; i < 180; ++i) w.step(1.0 / 60.0);
   const double top = 0.2 + 0.25;  // the boxes' centre height on an undeformed plank
   double lowest = 1e9, highest = -1e9, fastest = 0.0;
-  for (std::size_t i = 2; i < w.body_count(); ++i) {
+  for (int i = 2; i < w.body_count(); ++i) {
     const Body<2>& b = w.body(BodyId{std::uint32_t(i)});
     lowest = std::min(lowest, b.center[1]);
     highest = std::max(highest, b.center[1]);
