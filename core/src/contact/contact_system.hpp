@@ -91,31 +91,34 @@ struct SolverBody {
 // accumulated impulses of the current stage.
 template <int N>
 struct PointConstraint {
+  // What the soft step's normal passes read, first and together (a 4D point is about 1 KB: the passes
+  // are bound by memory).
+  double separation = 0.0;       // m, soft step: the separation after the last position update
+  double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
+  double normal_impulse = 0.0;   // N s, accumulated in the current stage
+  double normal_total = 0.0;     // N s, over all stages (events, ContactInfo)
+  // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
+  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb, wa, wb).
+  Eigen::Matrix<double, kBiv<N>, 1> jn_a, jn_b, dn_a, dn_b;
+  // Friction (and both passes of the paper's solver).
+  double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
+  bool sliding = false;   // it was slipping: kinetic friction, against the slip
+  Vec<N> tangent_impulse = Vec<N>::Zero();          // N s, accumulated in the current stage
+  Vec<N> slip_direction = Vec<N>::Zero();  // unit, the tangential slip when the step began (if sliding)
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
+  // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
+  // that makes it (of the pair, or of the unfrozen body during shock propagation).
+  Mat<N> tangent_mass;
   Eigen::Matrix<double, kBiv<N>, N> wa, wb;         // I^-1 [r]_* for each body (angular change per impulse)
   // K n, of the bodies that can move (the pair's, or the unfrozen body's in shock propagation): how a
   // friction impulse j_t changes the normal velocity, n . K j_t = (K n) . j_t.
   Vec<N> kn = Vec<N>::Zero();
-  // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
-  // that makes it (of the pair, or of the unfrozen body during shock propagation).
-  Mat<N> tangent_mass;
-  double normal_mass = 0.0;                         // 1 / (n^T K n), likewise
   double gap = 0.0;                                 // m, -depth at the start of the step
   double approach = 0.0;                            // m/s, normal velocity at the start (< 0 closing)
-  double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
-  bool sliding = false;   // it was slipping: kinetic friction, against the slip
-  Vec<N> slip_direction = Vec<N>::Zero();  // unit, the tangential slip when the step began (if sliding)
-  double normal_impulse = 0.0;                      // N s, accumulated in the current stage
-  Vec<N> tangent_impulse = Vec<N>::Zero();          // N s, likewise (friction)
-  double normal_total = 0.0;                        // N s, over all stages (events, ContactInfo)
   double warm_normal = 0.0;                         // N s, last step's contact-stage impulses (warm start)
   Vec<N> warm_tangent = Vec<N>::Zero();
   double base_separation = 0.0;  // m, soft step: gap - n . (rb - ra), so that the current separation is
                                  // base + n . (dp_b + dq_b rb - dp_a - dq_a ra)
-  double separation = 0.0;       // m, soft step: that separation after the last position update
-  // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
-  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb, wa, wb).
-  Eigen::Matrix<double, kBiv<N>, 1> jn_a, jn_b, dn_a, dn_b;
   double pseudo = 0.0;                              // split impulse along the normal
   double pseudo_mass = 0.0;                         // 1 / (n^T K n) of the pair (kept through shock propagation)
 };
