@@ -269,6 +269,12 @@ void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);
 template <int N>
 void update_islands(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h);
 
+// A body the solvers move: dynamic and awake. Static, kinematic and sleeping bodies are only read.
+template <int N>
+inline bool moves(const ContactState<N>& s, const std::vector<Body<N>>& bodies, std::size_t i) {
+  return bodies[i].is_dynamic() && s.awake[i];
+}
+
 // Kinematic bodies with a velocity can hit sleeping bodies and keep them awake; resting ones behave
 // like static bodies.
 template <int N>

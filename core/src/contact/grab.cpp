@@ -18,7 +18,7 @@ bool prepare_grabs(ContactState<N>& s, const std::vector<Body<N>>& bodies, doubl
   bool any = false;
   for (GrabConstraint<N>& g : s.grabs) {
     const std::uint32_t i = g.def.body.index;
-    g.active = g.live && bodies[i].is_dynamic() && s.awake[i];
+    g.active = g.live && moves(s, bodies, i);
     if (!g.active) continue;
     const Body<N>& b = bodies[i];
     const SolverBody<N>& sb = s.solver_bodies[i];

@@ -39,7 +39,7 @@ void unite(std::vector<int>& parent, int a, int b) {
 template <int N>
 void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   const int n = int(bodies.size());
-  auto movable = [&](int i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  auto movable = [&](int i) { return moves(s, bodies, std::size_t(i)); };
   for (int i = 0; i < n; ++i) s.solver_bodies[i].level = movable(i) ? kUnreached : -1;
   // Adjacency between movable bodies (compressed rows).
   s.adjacency_start.assign(n + 1, 0);
@@ -100,7 +100,7 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
 template <int N>
 void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
   const int n = int(bodies.size());
-  auto movable = [&](int i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  auto movable = [&](int i) { return moves(s, bodies, std::size_t(i)); };
   s.union_parent.resize(n);
   for (int i = 0; i < n; ++i) s.union_parent[i] = i;
   for (int i = 0; i < n; ++i) {

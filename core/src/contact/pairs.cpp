@@ -3,6 +3,7 @@
 // the contact events after the step.
 #include <algorithm>
 #include <bit>
+#include <limits>
 
 #include <Eigen/LU>
 
@@ -123,7 +124,7 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
   cs.exact_separation = false;
   cs.face_preference = settings.face_preference;
   for (Pair<N>& p : s.pairs) p.updated = false;
-  auto active = [&](std::uint32_t i) { return bodies[i].is_dynamic() && s.awake[i]; };
+  auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
   const bool recycles = settings.solver == ContactSolver::SoftStep;
   // How far a point of a body that moves can be from its centre (0 for static bodies).
   auto extent = [&](const Body<N>& b, std::uint32_t i) {
@@ -171,7 +172,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
     sb.vp.setZero();
     sb.wp = Bivector<N>{};
     sb.frozen = false;
-    if (b.is_dynamic() && s.awake[i]) {
+    if (moves(s, bodies, i)) {
       sb.inv_mass = b.inv_mass;
       sb.inv_inertia = b.world_inv_inertia();
     } else {
@@ -220,15 +221,16 @@ void warm_matches(const Pair<N>& p, const Vec<N>& centre_a, double distance,
 // uncoloured group. Deterministic: a function of the pair order alone.
 template <int N>
 void colour_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
-  constexpr int kColours = 32;
+  constexpr int kColours = 32;  // the bits of a body's mask: countr_one gives kColours when all are taken
+  static_assert(kColours == std::numeric_limits<std::uint32_t>::digits);
   s.colour_mask.assign(bodies.size(), 0);
   s.colour_of.resize(s.constraint_pairs.size());
   std::array<int, kColours + 3> start{};
   for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
     const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
-    const bool da = bodies[p.a].is_dynamic() && s.awake[p.a], db = bodies[p.b].is_dynamic() && s.awake[p.b];
+    const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
     const std::uint32_t used = (da ? s.colour_mask[p.a] : 0u) | (db ? s.colour_mask[p.b] : 0u);
-    const int c = used == ~0u ? kColours : std::countr_one(used);
+    const int c = std::countr_one(used);
     if (c < kColours) {
       if (da) s.colour_mask[p.a] |= 1u << c;
       if (db) s.colour_mask[p.b] |= 1u << c;
@@ -261,8 +263,7 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       continue;
     }
     p.normal_impulse.fill(0.0);
-    const bool da = bodies[p.a].is_dynamic() && s.awake[p.a], db = bodies[p.b].is_dynamic() && s.awake[p.b];
-    if (da || db) s.constraint_pairs.push_back(int(pi));
+    if (moves(s, bodies, p.a) || moves(s, bodies, p.b)) s.constraint_pairs.push_back(int(pi));
   }
   if (colour) colour_constraints(s, bodies);
   for (const int pi : s.constraint_pairs) {

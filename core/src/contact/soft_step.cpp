@@ -134,7 +134,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     sb.dq.setIdentity();
     // Bodies that do not move are only read: writing their unchanged velocities would chain every
     // contact with the ground through one memory location.
-    sb.frozen = !(bodies[i].is_dynamic() && s.awake[i]);
+    sb.frozen = !moves(s, bodies, i);
   }
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
