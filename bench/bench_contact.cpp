@@ -117,8 +117,9 @@ int dynamic_count(const World<N>& w) {
 
 // Times `state.iterations()` steps of a copy of the settled world.
 template <int N>
-void time_wedge(benchmark::State& state, const World<N>& start, double h) {
+void time_wedge(benchmark::State& state, const World<N>& start, double h, int workers = 1) {
   World<N> w = start;
+  w.settings().workers = workers;
   set_start_counters(state, w, awake_count(w), dynamic_count(w));
   for (auto _ : state) w.step(h);
   state.counters["pairs"] = double(w.contacts().size());
@@ -134,12 +135,13 @@ double top_angle(const World<2>& w, BodyId id) {
   return std::atan2(r(1, 0), r(0, 0));
 }
 
-void Pyramid2D_Wedge(benchmark::State& state, bool sleep) {
+void Pyramid2D_Wedge(benchmark::State& state, bool sleep, int workers = 1) {
   const World<2> initial = wedge_pyramid(kPyramidRows, sleep);
   const World<2>& start = settled<2>(sleep ? "pyramid/on" : "pyramid/off", kPyramidWarmup,
                                      [&] { return wedge_pyramid(kPyramidRows, sleep); });
   const BodyId top{std::uint32_t(initial.body_count() - 1)};
   World<2> w = start;
+  w.settings().workers = workers;
   set_start_counters(state, w, awake_count(w), dynamic_count(w));
   state.counters["top_dy"] = w.body(top).center[1] - initial.body(top).center[1];
   state.counters["top_dx"] = w.body(top).center[0] - initial.body(top).center[0];
@@ -171,6 +173,9 @@ BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_off, false)->Iterations(kPyramidTimed)-
 BENCHMARK_CAPTURE(Pyramid2D_Box2D, sleep_off, false)->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_on, true)->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pyramid2D_Box2D, sleep_on, true)->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
+// Both cores (WorldSettings::workers = 2): wall time, since the process's CPU time counts both threads.
+BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_off/workers:2, false, 2)
+    ->Iterations(kPyramidTimed)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // ------------------------------------------------------------------ 2. 3D pile: Wedge and Bullet
 
@@ -183,8 +188,8 @@ const World<N>& settled_pile(int count, bool sleep, int warmup, bool until_aslee
   return settled<N>(key, warmup, [&] { return wedge_pile<N>(count, sleep); }, until_asleep);
 }
 
-void Pile3D_Wedge(benchmark::State& state, bool sleep) {
-  time_wedge<3>(state, settled_pile<3>(kPileCount, sleep, kPileWarmup), kDt);
+void Pile3D_Wedge(benchmark::State& state, bool sleep, int workers = 1) {
+  time_wedge<3>(state, settled_pile<3>(kPileCount, sleep, kPileWarmup), kDt, workers);
 }
 
 void Pile3D_Bullet(benchmark::State& state, bool sleep) {
@@ -204,17 +209,21 @@ BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_off, false)->Iterations(kPileTimed)->Unit(
 BENCHMARK_CAPTURE(Pile3D_Bullet, sleep_off, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_on, true)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile3D_Bullet, sleep_on, true)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_off/workers:2, false, 2)
+    ->Iterations(kPileTimed)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // ------------------------------------------------------------------ 3, 4. 4D piles
 
-void Pile4D_Wedge(benchmark::State& state, int count, bool sleep) {
+void Pile4D_Wedge(benchmark::State& state, int count, bool sleep, int workers = 1) {
   const bool big = count >= kBigPileCount;
-  time_wedge<4>(state, settled_pile<4>(count, sleep, big ? kBigPileWarmup : kPileWarmup), kDt);
+  time_wedge<4>(state, settled_pile<4>(count, sleep, big ? kBigPileWarmup : kPileWarmup), kDt, workers);
 }
 
 BENCHMARK_CAPTURE(Pile4D_Wedge, 100/sleep_off, 100, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_off, 1000, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_on, 1000, true)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_off/workers:2, 1000, false, 2)
+    ->Iterations(kPileTimed)->UseRealTime()->Unit(benchmark::kMillisecond);
 // The goal's state: the same pile once settled, i.e. asleep. After 15 s a fifth of it is still awake
 // (islands whose bodies have not all been still for time_to_sleep). Counter settled_s: the simulated
 // time it took to fall asleep (the cap, 120 s, if it never did: then awake > 0 says so).

@@ -127,6 +127,7 @@ World<N>::World(const WorldSettings<N>& settings)
   if (!settings_.gravity.allFinite()) throw Error("gravity must be finite");
   if (settings_.rotor_repair_interval < 1) throw Error("rotor_repair_interval must be >= 1");
   check_contact_settings(settings_.contact);
+  contact_->workers.resize(settings_.workers);
 }
 
 template <int N>
@@ -350,6 +351,7 @@ void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
 
 template <int N>
 void World<N>::step(double h) {
+  contact_->workers.resize(settings_.workers);
   find_contacts(h);
   if (settings_.contact.solver == ContactSolver::SoftStep) {
     soft_step(h);
@@ -408,9 +410,9 @@ void World<N>::report_contact_events() {
 // implicitly in the body frame, then drag as an implicit decay 1/(1 + h c) (stable for any h).
 template <int N>
 void World<N>::integrate_velocities(double h) {
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+  contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) {
     Body<N>& b = bodies_[i];
-    if (!b.is_dynamic() || !contact_->awake[i]) continue;
+    if (!b.is_dynamic() || !contact_->awake[i]) return;
     b.velocity += h * (settings_.gravity + b.force * b.inv_mass);
     // In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
     // Without a torque, a body whose inertia is isotropic (a cube, a ball) keeps its w exactly: w x I w
@@ -424,7 +426,7 @@ void World<N>::integrate_velocities(double h) {
     }
     b.velocity *= 1.0 / (1.0 + h * b.linear_drag);
     b.angular_velocity *= 1.0 / (1.0 + h * b.angular_drag);
-  }
+  });
 }
 
 // Position half, with the new velocities plus the split-impulse pseudo velocities of position
@@ -433,9 +435,9 @@ void World<N>::integrate_velocities(double h) {
 template <int N>
 void World<N>::integrate_positions(double h, bool last_of_step) {
   const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+  contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) {
     Body<N>& b = bodies_[i];
-    if (b.type == BodyType::Static || !contact_->awake[i]) continue;
+    if (b.type == BodyType::Static || !contact_->awake[i]) return;
     const contact::SolverBody<N>& pseudo = contact_->solver_bodies[i];
     b.center += h * (b.velocity + pseudo.vp);
     if (pseudo.wp.c.isZero(0.0)) {
@@ -450,7 +452,7 @@ void World<N>::integrate_positions(double h, bool last_of_step) {
       b.rotor = next;
     }
     if (repair_now) b.rotor = repair(b.rotor);
-  }
+  });
 }
 
 template <int N>

@@ -48,6 +48,10 @@ struct WorldSettings {
   bool gyroscopic = true;           // integrate the w x I'w term (off only for experiments)
   GyroscopicMethod gyroscopic_method = GyroscopicMethod::ImplicitMidpoint;
   int rotor_repair_interval = 1;    // steps between rotor repairs by factorisation (>= 1)
+  // Threads a step may use, 1..64, the calling thread included. The soft step splits each colour of
+  // constraints and the per-body loops between them; the state after a step is bit-identical for any
+  // count (docs/contact.md). Above the processor count it only costs.
+  int workers = 1;
   ContactSettings contact;          // collision and contact processing, sleeping
 };
 

@@ -87,38 +87,36 @@ Vec<N> friction_update(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N
 
 template <int N>
 void load_velocities(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
+  for_each_body(s, int(bodies.size()), [&](int i) {
     s.solver_bodies[i].v = bodies[i].velocity;
     s.solver_bodies[i].w = bodies[i].angular_velocity;
-  }
+  });
 }
 
 template <int N>
-void store_velocities(const ContactState<N>& s, std::vector<Body<N>>& bodies) {
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!bodies[i].is_dynamic() || !s.awake[i]) continue;
+void store_velocities(ContactState<N>& s, std::vector<Body<N>>& bodies) {
+  for_each_body(s, int(bodies.size()), [&](int i) {
+    if (!bodies[i].is_dynamic() || !s.awake[i]) return;
     bodies[i].velocity = s.solver_bodies[i].v;
     bodies[i].angular_velocity = s.solver_bodies[i].w;
-  }
+  });
 }
 
-// Applies every point's accumulated impulses, normal and friction, to the solver bodies (warm start).
+// Applies the constraint's accumulated impulses, normal and friction, to its solver bodies.
 template <int N>
-void apply_accumulated(ContactState<N>& s) {
-  for (const Constraint<N>& c : s.constraints) {
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      const PointConstraint<N>& p = s.points[k];
-      apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
-    }
+void apply_accumulated(ContactState<N>& s, const Constraint<N>& c) {
+  SolverBody<N>& a = s.solver_bodies[c.a];
+  SolverBody<N>& b = s.solver_bodies[c.b];
+  for (int k = c.first; k < c.first + c.count; ++k) {
+    const PointConstraint<N>& p = s.points[k];
+    apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
   }
 }
 
 // Keeps this step's impulses, per feature, to start the next step from (warm start).
 template <int N>
 void keep_for_warm_start(ContactState<N>& s) {
-  for (const Constraint<N>& c : s.constraints) {
+  for_each_constraint(s, [&](const Constraint<N>& c) {
     Pair<N>& pair = s.pairs[c.pair];
     pair.warm_count = c.count;
     for (int k = 0; k < c.count; ++k) {
@@ -128,7 +126,7 @@ void keep_for_warm_start(ContactState<N>& s) {
       pair.warm_normal[k] = p.normal_impulse;
       pair.warm_tangent[k] = p.tangent_impulse;
     }
-  }
+  });
 }
 
 }  // namespace wedge::contact

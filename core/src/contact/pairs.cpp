@@ -164,7 +164,7 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
 // Before the step's first stage: inverse world inertia of every awake dynamic body, and velocities.
 template <int N>
 void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
+  for_each_body(s, int(bodies.size()), [&](int i) {
     const Body<N>& b = bodies[i];
     SolverBody<N>& sb = s.solver_bodies[i];
     sb.v = b.velocity;
@@ -179,7 +179,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
       sb.inv_mass = 0.0;
       sb.inv_inertia.setZero();
     }
-  }
+  });
 }
 
 // Which of the last step's points each new point continues (-1: none): the one with the same feature
@@ -239,15 +239,74 @@ void colour_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
     ++start[c + 2];
   }
   for (int c = 2; c < kColours + 3; ++c) start[c] += start[c - 1];  // start[c + 1]: where colour c begins
+  s.colour_start.assign(start.begin() + 1, start.end());
   s.colour_order.resize(s.constraint_pairs.size());
   for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k)
     s.colour_order[start[s.colour_of[k] + 1]++] = s.constraint_pairs[k];
   s.constraint_pairs.swap(s.colour_order);
 }
 
-// One constraint per pair with contact points and an awake dynamic body. Each point keeps its lever
-// arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper section 6), and takes the
-// static friction coefficient if it was not slipping at the start of the step, else the kinetic one.
+// The constraint of pair pi, as constraints[index] (whose `first`, set already, says where its points go).
+// Each point keeps its lever arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper
+// section 6), and takes the static friction coefficient if it was not slipping at the start of the
+// step, else the kinetic one.
+template <int N>
+void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
+                      double slip_speed, double match_distance, int pi, int index) {
+  Pair<N>& p = s.pairs[pi];
+  Constraint<N> c;
+  c.first = s.constraints[index].first;
+  c.pair = int(pi);
+  c.a = int(p.a);
+  c.b = int(p.b);
+  c.normal = p.manifold.normal;
+  const Material& ma = materials[p.a];
+  const Material& mb = materials[p.b];
+  c.friction = mix_friction(ma.friction, mb.friction);
+  c.kinetic_friction = std::min(mix_friction(ma.kinetic_friction, mb.kinetic_friction), c.friction);
+  c.restitution = mix_restitution(ma.restitution, mb.restitution);
+  c.count = p.manifold.count;
+  const SolverBody<N>& sa = s.solver_bodies[c.a];
+  const SolverBody<N>& sb = s.solver_bodies[c.b];
+  std::array<int, kMaxManifoldPoints<N>> match;
+  warm_matches(p, bodies[c.a].center, match_distance, match);
+  for (int k = 0; k < c.count; ++k) {
+    const ContactPoint<N>& cp = p.manifold.points[k];
+    PointConstraint<N> q;
+    q.ra = p.arm_a[k];
+    q.rb = p.arm_b[k];
+    const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
+    q.wa = sa.inv_inertia * ja;
+    q.wb = sb.inv_inertia * jb;
+    set_effective_masses(
+        q, Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb),
+        c.normal);
+    q.pseudo_mass = q.normal_mass;
+    q.jn_a = ja * c.normal;
+    q.jn_b = jb * c.normal;
+    q.dn_a = q.wa * c.normal;
+    q.dn_b = q.wb * c.normal;
+    q.gap = -cp.depth;
+    const Vec<N> u = relative_velocity(sa, sb, q);
+    q.approach = c.normal.dot(u);
+    const Vec<N> slip = u - q.approach * c.normal;
+    const double slip_norm = slip.norm();
+    q.sliding = slip_norm > slip_speed;
+    if (q.sliding) q.slip_direction = slip / slip_norm;
+    q.friction = q.sliding ? c.kinetic_friction : c.friction;
+    const int w = match[k];
+    if (w >= 0) {
+      q.warm_normal = p.warm_normal[w];
+      q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
+    }
+    s.points[c.first + k] = q;
+  }
+  p.constraint = index;
+  s.constraints[index] = c;
+}
+
+// One constraint per pair with contact points and an awake dynamic body, in colour order for the soft
+// step.
 template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                        double slip_speed, double match_distance, bool colour) {
@@ -265,59 +324,20 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     p.normal_impulse.fill(0.0);
     if (moves(s, bodies, p.a) || moves(s, bodies, p.b)) s.constraint_pairs.push_back(int(pi));
   }
+  s.colour_start.clear();
   if (colour) colour_constraints(s, bodies);
-  for (const int pi : s.constraint_pairs) {
-    Pair<N>& p = s.pairs[pi];
-    Constraint<N> c;
-    c.pair = int(pi);
-    c.a = int(p.a);
-    c.b = int(p.b);
-    c.normal = p.manifold.normal;
-    const Material& ma = materials[p.a];
-    const Material& mb = materials[p.b];
-    c.friction = mix_friction(ma.friction, mb.friction);
-    c.kinetic_friction = std::min(mix_friction(ma.kinetic_friction, mb.kinetic_friction), c.friction);
-    c.restitution = mix_restitution(ma.restitution, mb.restitution);
-    c.first = int(s.points.size());
-    c.count = p.manifold.count;
-    const SolverBody<N>& sa = s.solver_bodies[c.a];
-    const SolverBody<N>& sb = s.solver_bodies[c.b];
-    std::array<int, kMaxManifoldPoints<N>> match;
-    warm_matches(p, bodies[c.a].center, match_distance, match);
-    for (int k = 0; k < c.count; ++k) {
-      const ContactPoint<N>& cp = p.manifold.points[k];
-      PointConstraint<N> q;
-      q.ra = p.arm_a[k];
-      q.rb = p.arm_b[k];
-      const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
-      q.wa = sa.inv_inertia * ja;
-      q.wb = sb.inv_inertia * jb;
-      set_effective_masses(
-          q, Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb),
-          c.normal);
-      q.pseudo_mass = q.normal_mass;
-      q.jn_a = ja * c.normal;
-      q.jn_b = jb * c.normal;
-      q.dn_a = q.wa * c.normal;
-      q.dn_b = q.wb * c.normal;
-      q.gap = -cp.depth;
-      const Vec<N> u = relative_velocity(sa, sb, q);
-      q.approach = c.normal.dot(u);
-      const Vec<N> slip = u - q.approach * c.normal;
-      const double slip_norm = slip.norm();
-      q.sliding = slip_norm > slip_speed;
-      if (q.sliding) q.slip_direction = slip / slip_norm;
-      q.friction = q.sliding ? c.kinetic_friction : c.friction;
-      const int w = match[k];
-      if (w >= 0) {
-        q.warm_normal = p.warm_normal[w];
-        q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
-      }
-      s.points.push_back(q);
-    }
-    p.constraint = int(s.constraints.size());
-    s.constraints.push_back(c);
+  // Where each constraint's points go, then every constraint on its own (split over the workers).
+  s.constraints.resize(s.constraint_pairs.size());
+  int total = 0;
+  for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
+    s.constraints[k].first = total;
+    total += s.pairs[s.constraint_pairs[k]].manifold.count;
   }
+  s.points.resize(total);
+  s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k)
+      build_constraint(s, bodies, materials, slip_speed, match_distance, s.constraint_pairs[k], k);
+  });
 }
 
 }  // namespace

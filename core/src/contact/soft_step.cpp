@@ -56,8 +56,10 @@ void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstra
 // Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
-  for (PointConstraint<N>& p : s.points) p.normal_total += p.normal_impulse;
-  apply_accumulated(s);
+  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
+    for (int k = c.first; k < c.first + c.count; ++k) s.points[k].normal_total += s.points[k].normal_impulse;
+    apply_accumulated(s, c);
+  });
 }
 
 // One pass over the contacts: per constraint the normal impulses first (soft when use_bias and
@@ -65,7 +67,7 @@ void warm_start_substep(ContactState<N>& s) {
 template <int N>
 void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
   const double inv_h = 1.0 / h;
-  for (const Constraint<N>& c : s.constraints) {
+  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
     SolverBody<N>& a = s.solver_bodies[c.a];
     SolverBody<N>& b = s.solver_bodies[c.b];
     const Vec<N>& n = c.normal;
@@ -97,15 +99,15 @@ void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double 
       p.tangent_impulse = next;
       apply_impulse(a, b, p, change);
     }
-  }
+  });
 }
 
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
 // step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule).
 template <int N>
 void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
-  for (const Constraint<N>& c : s.constraints) {
-    if (c.restitution <= 0.0) continue;
+  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
+    if (c.restitution <= 0.0) return;
     SolverBody<N>& a = s.solver_bodies[c.a];
     SolverBody<N>& b = s.solver_bodies[c.b];
     for (int k = c.first; k < c.first + c.count; ++k) {
@@ -118,7 +120,7 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
       p.normal_total += change;
       apply_normal_impulse(a, b, p, c.normal, change);
     }
-  }
+  });
 }
 
 }  // namespace
@@ -126,23 +128,23 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
 template <int N>
 void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h) {
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
+  for_each_body(s, int(bodies.size()), [&](int i) {
     SolverBody<N>& sb = s.solver_bodies[i];
     sb.x0 = bodies[i].center;
     sb.r0_inverse = to_matrix(bodies[i].rotor).transpose();
     sb.dp.setZero();
     sb.dq.setIdentity();
     // Bodies that do not move are only read: writing their unchanged velocities would chain every
-    // contact with the ground through one memory location.
+    // contact with the ground through one memory location (and two workers through one cache line).
     sb.frozen = !moves(s, bodies, i);
-  }
+  });
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
   const Softness soft = make_soft(std::min(settings.contact_hertz, 0.125 / h), settings.contact_damping_ratio, h);
   s.soft_bias_rate = soft.bias_rate;
   s.soft_mass_scale = soft.mass_scale;
   s.soft_impulse_scale = soft.impulse_scale;
-  for (Constraint<N>& c : s.constraints) {
+  for_each_constraint(s, [&](const Constraint<N>& c) {
     for (int k = c.first; k < c.first + c.count; ++k) {
       PointConstraint<N>& p = s.points[k];
       p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
@@ -151,7 +153,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       p.tangent_impulse = settings.warm_start ? p.warm_tangent : Vec<N>::Zero();
       p.normal_total = 0.0;
     }
-  }
+  });
 }
 
 template <int N>
@@ -176,14 +178,14 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
 template <int N>
 void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   if (s.constraints.empty()) return;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].type == BodyType::Static || !s.awake[i]) continue;
+  for_each_body(s, int(bodies.size()), [&](int i) {
+    if (bodies[i].type == BodyType::Static || !s.awake[i]) return;
     SolverBody<N>& sb = s.solver_bodies[i];
     sb.dp = bodies[i].center - sb.x0;
     sb.dq = to_matrix(bodies[i].rotor) * sb.r0_inverse;
-  }
+  });
   // s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra: the turned normal once per pair.
-  for (const Constraint<N>& c : s.constraints) {
+  for_each_constraint(s, [&](const Constraint<N>& c) {
     const SolverBody<N>& a = s.solver_bodies[c.a];
     const SolverBody<N>& b = s.solver_bodies[c.b];
     const double moved = c.normal.dot(b.dp - a.dp);
@@ -192,7 +194,7 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
       PointConstraint<N>& p = s.points[k];
       p.separation = p.base_separation + moved + nb.dot(p.rb) - na.dot(p.ra);
     }
-  }
+  });
 }
 
 template <int N>

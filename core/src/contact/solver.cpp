@@ -280,7 +280,7 @@ void warm_start(ContactState<N>& s) {
     p.normal_impulse = p.warm_normal;
     p.tangent_impulse = p.warm_tangent;
   }
-  apply_accumulated(s);
+  for (const Constraint<N>& c : s.constraints) apply_accumulated(s, c);
 }
 
 template <int N>

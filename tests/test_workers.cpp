@@ -1,0 +1,159 @@
+// WorldSettings::workers (core/src/parallel/workers.cpp): loops are cut into contiguous ranges that
+// cover every item once, the helpers really run them, and a step's state is bit-identical for any
+// number of workers, in every solver and dimension, for piles large enough that the solver's colours
+// are split.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "builders.hpp"
+#include "parallel/workers.hpp"
+#include "wedge/error.hpp"
+#include "wedge/world.hpp"
+
+using namespace wedge;
+using parallel::Workers;
+
+namespace {
+
+// The process's thread count (Linux): helpers are started on the first split loop.
+int thread_count() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Threads:", 0) == 0) return std::stoi(line.substr(8));
+  return -1;
+}
+
+struct Range {
+  int begin, end;
+  std::thread::id thread;
+};
+
+std::vector<Range> ranges_of(Workers& workers, int n, int grain) {
+  std::mutex m;
+  std::vector<Range> ranges;
+  workers.for_ranges(n, grain, [&](int begin, int end) {
+    const std::lock_guard<std::mutex> lock(m);
+    ranges.push_back({begin, end, std::this_thread::get_id()});
+  });
+  std::sort(ranges.begin(), ranges.end(), [](const Range& a, const Range& b) { return a.begin < b.begin; });
+  return ranges;
+}
+
+// The ranges are contiguous, in order, and cover [0, n) exactly once.
+void check_cover(const std::vector<Range>& ranges, int n) {
+  int next = 0;
+  for (const Range& r : ranges) {
+    CHECK(r.begin == next);
+    CHECK(r.end > r.begin);
+    next = r.end;
+  }
+  CHECK(next == n);
+}
+
+// Steps copies of `start` with 1, 2 and 3 workers and requires bit-identical state hashes after every
+// step; returns the hash after the last.
+template <int N>
+std::uint64_t same_for_any_workers(const World<N>& start, int steps, double h) {
+  std::vector<World<N>> worlds;
+  for (const int workers : {1, 2, 3}) {
+    worlds.push_back(start);
+    worlds.back().settings().workers = workers;
+  }
+  const int before = thread_count();
+  int mismatches = 0;
+  for (int i = 0; i < steps; ++i) {
+    for (World<N>& w : worlds) w.step(h);
+    mismatches += worlds[1].state_hash() != worlds[0].state_hash() || worlds[2].state_hash() != worlds[0].state_hash();
+  }
+  // The helpers of the 2- and 3-worker worlds ran (1 + 2 threads): the split paths were taken.
+  CHECK(thread_count() - before == 3);
+  CHECK(mismatches == 0);
+  return worlds[0].state_hash();
+}
+
+template <int N>
+World<N> pile(int count, ContactSolver solver) {
+  WorldSettings<N> s;
+  s.gravity = -9.81 * Vec<N>::Unit(1);
+  s.contact.solver = solver;
+  s.contact.allow_sleep = false;
+  World<N> w(s);
+  scenes::add_ground<N>(w);
+  scenes::add_box_pile<N>(w, count);
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("workers: for_ranges covers every item once, on the helpers only when each gets a grain",
+          "[workers]") {
+  Workers one(1), two(2), four(4);
+  for (const int n : {0, 1, 7, 64, 1000, 1001}) {
+    INFO("n = " << n);
+    check_cover(ranges_of(one, n, 1), n);
+    check_cover(ranges_of(two, n, 1), n);
+    check_cover(ranges_of(four, n, 1), n);
+  }
+  // 1,000 items of grain 10 over 2 threads: two halves, the first on the calling thread.
+  std::vector<Range> r = ranges_of(two, 1000, 10);
+  REQUIRE(r.size() == 2);
+  CHECK(r[0].end == 500);
+  CHECK(r[0].thread == std::this_thread::get_id());
+  CHECK(r[1].thread != std::this_thread::get_id());
+  // Fewer than two grains: all of it here. Three grains over four threads: three ranges.
+  r = ranges_of(two, 19, 10);
+  REQUIRE(r.size() == 1);
+  CHECK(r[0].thread == std::this_thread::get_id());
+  r = ranges_of(four, 30, 10);
+  CHECK(r.size() == 3);
+  std::set<std::thread::id> threads;
+  for (const Range& x : ranges_of(four, 4000, 10)) threads.insert(x.thread);
+  CHECK(threads.size() == 4);
+}
+
+TEST_CASE("workers: a helper that fell asleep wakes for the next loop; copies have their own threads",
+          "[workers]") {
+  Workers two(2);
+  check_cover(ranges_of(two, 100, 10), 100);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // past the spin: the helper sleeps
+  const std::vector<Range> r = ranges_of(two, 100, 10);
+  check_cover(r, 100);
+  REQUIRE(r.size() == 2);
+  CHECK(r[1].thread != std::this_thread::get_id());
+  Workers copy = two;
+  const std::vector<Range> c = ranges_of(copy, 100, 10);
+  REQUIRE(c.size() == 2);
+  CHECK(c[1].thread != r[1].thread);
+}
+
+TEST_CASE("workers: out of 1..64 is refused with a message naming the setting", "[workers]") {
+  Workers w;
+  CHECK_THROWS_WITH(w.resize(0), Catch::Contains("workers must be in 1..64"));
+  CHECK_THROWS_WITH(w.resize(65), Catch::Contains("workers must be in 1..64"));
+  WorldSettings<3> s;
+  s.workers = 0;
+  CHECK_THROWS_WITH(World<3>(s), Catch::Contains("workers"));
+  World<3> world;
+  world.settings().workers = -2;
+  CHECK_THROWS_WITH(world.step(0.01), Catch::Contains("workers"));
+}
+
+TEST_CASE("workers: piles step bit-identically with 1, 2 and 3 workers (soft step, 2D-4D)", "[workers][contact]") {
+  // Sizes where the first colours hold hundreds of constraints (so they are split), stepped through
+  // the fall, the impacts and the heap's first seconds.
+  same_for_any_workers(pile<2>(400, ContactSolver::SoftStep), 120, 1.0 / 60.0);
+  same_for_any_workers(pile<3>(300, ContactSolver::SoftStep), 120, 1.0 / 60.0);
+  same_for_any_workers(pile<4>(200, ContactSolver::SoftStep), 120, 1.0 / 60.0);
+}
+
+TEST_CASE("workers: the paper's solver steps bit-identically with 1, 2 and 3 workers", "[workers][contact]") {
+  same_for_any_workers(pile<3>(400, ContactSolver::Paper), 150, 1.0 / 60.0);
+}
