@@ -12,6 +12,7 @@
 // state alone (bit-identical on every run).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -179,6 +180,7 @@ struct ContactState {
   std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
   std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, merged_pairs;  // scratch for the merge
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
+  std::vector<int> narrow_list;             // the narrow phase's pairs of one round
 
   std::vector<SolverBody<N>> solver_bodies;  // per body
   std::vector<Constraint<N>> constraints;    // in pair order (the paper's solver) or colour order (soft step)
@@ -253,9 +255,24 @@ void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
     return;
   }
   for (int g = 0; g + 1 < groups; ++g) {
-    const int first = s.colour_start[g];
-    s.workers.for_ranges(s.colour_start[g + 1] - first, kConstraintGrain, [&](int begin, int end) {
-      for (int k = first + begin; k < first + end; ++k) fn(s.constraints[k]);
+    const int first = s.colour_start[g], last = s.colour_start[g + 1];
+    const int parts = std::min(s.workers.count(), (last - first) / kConstraintGrain);
+    if (parts <= 1) {
+      for (int k = first; k < last; ++k) fn(s.constraints[k]);
+      continue;
+    }
+    // Equal shares of the colour's points (a constraint's cost is its points'), cut at constraints.
+    s.workers.for_parts(parts, [&](int part, int of) {
+      const auto cut = [&](int i) {
+        if (i == of) return last;
+        const Constraint<N>& end = s.constraints[last - 1];
+        const int begin_point = s.constraints[first].first, end_point = end.first + end.count;
+        const int target = begin_point + int(std::int64_t(end_point - begin_point) * i / of);
+        return int(std::lower_bound(s.constraints.begin() + first, s.constraints.begin() + last, target,
+                                    [](const Constraint<N>& c, int t) { return c.first < t; }) -
+                   s.constraints.begin());
+      };
+      for (int k = cut(part), end = cut(part + 1); k < end; ++k) fn(s.constraints[k]);
     });
   }
   for (int k = s.colour_start[groups - 1]; k < s.colour_start[groups]; ++k) fn(s.constraints[k]);

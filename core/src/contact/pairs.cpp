@@ -81,8 +81,19 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
 // leaves while touching ends.
 template <int N>
 void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
-  s.next_pairs.clear();
   s.ended.clear();
+  // Usually (a resting heap) the list is unchanged: keep it rather than copy every pair (4D: kilobytes).
+  std::size_t same = 0;
+  for (const auto& [a, b] : s.candidate_pairs) {
+    if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
+    if (same == s.pairs.size() || s.pairs[same].a != a || s.pairs[same].b != b) {
+      same = s.pairs.size() + 1;
+      break;
+    }
+    ++same;
+  }
+  if (same == s.pairs.size()) return;
+  s.next_pairs.clear();
   std::size_t old = 0;
   auto drop = [&s](const Pair<N>& p) {
     if (p.touching) s.ended.push_back({BodyId{p.a}, BodyId{p.b}});
@@ -112,45 +123,58 @@ double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
   return b.velocity.norm() + b.angular_velocity.c.norm() * s.box[i].extents().norm();
 }
 
-// Collides every pair with an awake dynamic body (or a moving kinematic one against a dynamic body).
-// Each pair's margin is the speculative contact_margin plus how far the two can close in one step, so a
-// contact that will close during the step is seen now (Guendelman's predicted positions, to first
-// order). A sleeping island that gets a contact point wakes, and its own pairs are collided in another
-// pass.
+// One pair's manifold: recycled while the bodies barely move relative to each other, else collided with
+// the speculative margin (below). Reads the bodies, writes only the pair.
 template <int N>
-void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+void collide_pair(const ContactState<N>& s, Pair<N>& p, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                   const ContactSettings& settings, double h) {
+  const Body<N>& a = bodies[p.a];
+  const Body<N>& b = bodies[p.b];
+  const double reach = h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
   CollisionSettings cs;
   cs.exact_separation = false;
   cs.face_preference = settings.face_preference;
+  cs.contact_margin = settings.contact_margin + reach;
+  const Transform<N> ta = transform_of(a), tb = transform_of(b);
+  // Recycled only between slow bodies (soft step): a fast one may meet new features within the step.
+  const bool flat = settings.solver == ContactSolver::SoftStep && flat_faced(*shapes[p.a]) && flat_faced(*shapes[p.b]);
+  // How far a point of a body that moves can be from its centre (0 for static bodies).
+  const double extent = std::max(a.type == BodyType::Static ? 0.0 : s.radius[p.a],
+                                 b.type == BodyType::Static ? 0.0 : s.radius[p.b]);
+  if (!(flat && reach <= settings.recycle_distance && recycle_manifold(p, a, b, ta.rotation, tb.rotation, extent, settings))) {
+    p.manifold = collide(*shapes[p.a], ta, *shapes[p.b], tb, cs);
+    cache_manifold(p, a, b, ta.rotation, tb.rotation);
+    p.cached = flat;
+  }
+  p.updated = true;
+}
+
+// Collides every pair with an awake dynamic body (or a moving kinematic one against a dynamic body).
+// Each pair's margin is the speculative contact_margin plus how far the two can close in one step, so a
+// contact that will close during the step is seen now (Guendelman's predicted positions, to first
+// order). Each round collides the pairs needed now, split over the workers, then wakes the sleeping
+// islands they touch, in pair order; the woken islands' pairs are collided in the next round.
+template <int N>
+void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                  const ContactSettings& settings, double h) {
   for (Pair<N>& p : s.pairs) p.updated = false;
   auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
-  const bool recycles = settings.solver == ContactSolver::SoftStep;
-  // How far a point of a body that moves can be from its centre (0 for static bodies).
-  auto extent = [&](const Body<N>& b, std::uint32_t i) {
-    return b.type == BodyType::Static ? 0.0 : s.radius[i];
-  };
   for (bool again = true; again;) {
     again = false;
-    for (Pair<N>& p : s.pairs) {
-      if (p.updated) continue;
+    s.narrow_list.clear();
+    for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
+      const Pair<N>& p = s.pairs[pi];
       const Body<N>& a = bodies[p.a];
       const Body<N>& b = bodies[p.b];
-      const bool needed = active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
-                          (moving_kinematic(b) && a.is_dynamic());
-      if (!needed) continue;
-      const double reach = h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
-      cs.contact_margin = settings.contact_margin + reach;
-      const Transform<N> ta = transform_of(a), tb = transform_of(b);
-      // Recycled only between slow bodies: a fast one may meet new features within the step.
-      const bool flat = recycles && flat_faced(*shapes[p.a]) && flat_faced(*shapes[p.b]);
-      if (!(flat && reach <= settings.recycle_distance &&
-            recycle_manifold(p, a, b, ta.rotation, tb.rotation, std::max(extent(a, p.a), extent(b, p.b)), settings))) {
-        p.manifold = collide(*shapes[p.a], ta, *shapes[p.b], tb, cs);
-        cache_manifold(p, a, b, ta.rotation, tb.rotation);
-        p.cached = flat;
-      }
-      p.updated = true;
+      if (!p.updated && (active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
+                         (moving_kinematic(b) && a.is_dynamic())))
+        s.narrow_list.push_back(int(pi));
+    }
+    s.workers.for_ranges(int(s.narrow_list.size()), kConstraintGrain, [&](int begin, int end) {
+      for (int k = begin; k < end; ++k) collide_pair(s, s.pairs[s.narrow_list[k]], bodies, shapes, settings, h);
+    });
+    for (const int pi : s.narrow_list) {
+      const Pair<N>& p = s.pairs[pi];
       if (p.manifold.count == 0) continue;
       for (const std::uint32_t i : {p.a, p.b})
         if (bodies[i].is_dynamic() && !s.awake[i]) {

@@ -33,7 +33,7 @@ struct Workers::Pool {
   // The job, written before epoch is bumped.
   Call call = nullptr;
   void* context = nullptr;
-  int parts = 0, n = 0;
+  int parts = 0;
 
   explicit Pool(int helpers) {
     for (int i = 1; i <= helpers; ++i) threads.emplace_back([this, i] { serve(i); });
@@ -50,7 +50,7 @@ struct Workers::Pool {
     for (;;) {
       seen = next_epoch(seen);
       if (stop) return;
-      if (part < parts) call(context, part, parts, n);
+      if (part < parts) call(context, part, parts);
       pending.fetch_sub(1, std::memory_order_release);
     }
   }
@@ -91,17 +91,16 @@ void Workers::resize(int count) {
   count_ = count;
 }
 
-void Workers::run(Call call, void* context, int parts, int n) {
+void Workers::run(Call call, void* context, int parts) {
   if (!pool_) pool_ = std::make_unique<Pool>(count_ - 1);
   Pool& p = *pool_;
   p.call = call;
   p.context = context;
   p.parts = parts;
-  p.n = n;
   p.pending.store(int(p.threads.size()), std::memory_order_relaxed);
   p.epoch.fetch_add(1);
   if (p.sleepers.load() > 0) p.epoch.notify_all();
-  call(context, 0, parts, n);
+  call(context, 0, parts);
   for (int i = 1; p.pending.load(std::memory_order_acquire) != 0; ++i) {
     pause();
     if (i % 1024 == 0) std::this_thread::yield();  // (a helper still waking from its sleep)

@@ -42,17 +42,28 @@ class Workers {
       if (n > 0) fn(0, n);
       return;
     }
+    for_parts(parts, [&](int part, int of) {
+      fn(int(std::int64_t(n) * part / of), int(std::int64_t(n) * (part + 1) / of));
+    });
+  }
+
+  // Calls fn(part, parts) for part = 0 .. parts - 1 (at most count()), each on its own thread, the
+  // calling thread taking part 0; returns when all are done. fn must not throw.
+  template <class F>
+  void for_parts(int parts, F&& fn) {
+    if (parts <= 1) {
+      fn(0, 1);
+      return;
+    }
     using Fn = std::remove_reference_t<F>;
-    auto call = [](void* context, int part, int of, int items) {
-      (*static_cast<Fn*>(context))(int(std::int64_t(items) * part / of), int(std::int64_t(items) * (part + 1) / of));
-    };
-    run(call, const_cast<void*>(static_cast<const void*>(&fn)), parts, n);
+    auto call = [](void* context, int part, int of) { (*static_cast<Fn*>(context))(part, of); };
+    run(call, const_cast<void*>(static_cast<const void*>(&fn)), std::min(parts, count_));
   }
 
  private:
   struct Pool;
-  using Call = void (*)(void* context, int part, int parts, int n);
-  void run(Call call, void* context, int parts, int n);
+  using Call = void (*)(void* context, int part, int parts);
+  void run(Call call, void* context, int parts);
 
   int count_ = 1;
   std::unique_ptr<Pool> pool_;  // started on first use with count_ - 1 helper threads
