@@ -3,7 +3,9 @@
 //   Pile3D_{Wedge,Jolt}                1,000 boxes dropped in a grid onto the ground (as wedge_bench_contact)
 //   JoltPyramid_{Wedge,Jolt}           Jolt's PerformanceTest pyramid, 1,240 boxes in 15 staggered layers
 // Built only when a peer's source folder is given to CMake (WEDGE_BOX2D_V3_DIR, WEDGE_JOLT_DIR); each
-// engine runs with its own defaults and sleeping off, one thread. One benchmark iteration is one step at
+// engine runs with its own defaults and sleeping off, one thread; the .../threads:2 runs give each engine
+// both cores (Wedge: WorldSettings::workers; Box2D v3: its scheduler; Jolt: its thread pool) and report
+// wall time, since CPU time would count both threads. One benchmark iteration is one step at
 // 60 Hz; each run first builds the scene and steps it untimed (warm-up), then times a fixed number of
 // steps. Run with --benchmark_enable_random_interleaving=true so that the engines' repetitions alternate.
 //
@@ -54,7 +56,8 @@ void run(benchmark::State& state, Scene& scene, const Run& r) {
 template <int N>
 class WedgeScene {
  public:
-  explicit WedgeScene(World<N> w) : world_(std::move(w)) {
+  explicit WedgeScene(World<N> w, int workers = 1) : world_(std::move(w)) {
+    world_.settings().workers = workers;
     for (int i = 0; i < world_.body_count(); ++i)
       if (world_.bodies()[std::size_t(i)].is_dynamic()) boxes_.push_back(BodyId{std::uint32_t(i)});
   }
@@ -77,28 +80,50 @@ World<2> pyramid(int rows) {  // Wedge's defaults (10 contact and 4 position ite
   return w;
 }
 
+// Each scene with 1 and 2 threads: state.range(1) (Pyramid2D) or range(0) is the thread count.
 void Pyramid2D_Wedge(benchmark::State& state) {
-  WedgeScene<2> scene(pyramid(int(state.range(0))));
+  WedgeScene<2> scene(pyramid(int(state.range(0))), int(state.range(1)));
   run(state, scene, kPyramid);
 }
 void Pile3D_Wedge(benchmark::State& state) {
-  WedgeScene<3> scene(wedge_pile<3>(1000, false));
+  WedgeScene<3> scene(wedge_pile<3>(1000, false), int(state.range(0)));
   run(state, scene, kPile);
 }
 void JoltPyramid_Wedge(benchmark::State& state) {
-  WedgeScene<3> scene(wedge_jolt_pyramid());
+  WedgeScene<3> scene(wedge_jolt_pyramid(), int(state.range(0)));
   run(state, scene, kJoltPyramid);
 }
-BENCHMARK(Pyramid2D_Wedge)->Arg(20)->Arg(40)->Arg(100)->Iterations(kPyramid.timed)->Unit(benchmark::kMillisecond);
-BENCHMARK(Pile3D_Wedge)->Iterations(kPile.timed)->Unit(benchmark::kMillisecond);
-BENCHMARK(JoltPyramid_Wedge)->Iterations(kJoltPyramid.timed)->Unit(benchmark::kMillisecond);
+// Registers a benchmark once per thread count, the 2-thread run on wall time.
+template <typename Fn>
+void add(const char* name, Fn fn, int timed, std::vector<std::int64_t> rows = {}) {
+  for (const int threads : {1, 2}) {
+    benchmark::internal::Benchmark* b = benchmark::RegisterBenchmark(name, fn);
+    if (rows.empty()) {
+      b->ArgName("threads")->Arg(threads);
+    } else {
+      b->ArgNames({"rows", "threads"});
+      for (const std::int64_t r : rows) b->Args({r, threads});
+    }
+    b->Iterations(timed)->Unit(benchmark::kMillisecond);
+    if (threads > 1) b->UseRealTime();
+  }
+}
+const bool registered_wedge = [] {
+  add("Pyramid2D_Wedge", Pyramid2D_Wedge, kPyramid.timed, {20, 40, 100});
+  add("Pile3D_Wedge", Pile3D_Wedge, kPile.timed);
+  add("JoltPyramid_Wedge", JoltPyramid_Wedge, kJoltPyramid.timed);
+  return true;
+}();
 
 #if WEDGE_PEER_BOX2D_V3
 void Pyramid2D_Box2Dv3(benchmark::State& state) {
-  Box2DV3Scene scene(pyramid(int(state.range(0))), false);
+  Box2DV3Scene scene(pyramid(int(state.range(0))), false, int(state.range(1)));
   run(state, scene, kPyramid);
 }
-BENCHMARK(Pyramid2D_Box2Dv3)->Arg(20)->Arg(40)->Arg(100)->Iterations(kPyramid.timed)->Unit(benchmark::kMillisecond);
+const bool registered_box2d = [] {
+  add("Pyramid2D_Box2Dv3", Pyramid2D_Box2Dv3, kPyramid.timed, {20, 40, 100});
+  return true;
+}();
 #endif
 
 #if WEDGE_PEER_JOLT
@@ -112,19 +137,23 @@ std::vector<BoxPose> poses(const World<3>& w) {
   }
   return out;
 }
-JoltSettings jolt_settings(double half) {
-  return {.half = half, .density = kDensity, .friction = kFriction, .gravity = kGravity, .dt = kDt, .sleep = false};
+JoltSettings jolt_settings(double half, int threads) {
+  return {.half = half, .density = kDensity, .friction = kFriction, .gravity = kGravity, .dt = kDt, .sleep = false,
+          .threads = threads};
 }
 void Pile3D_Jolt(benchmark::State& state) {
-  JoltScene scene(poses(wedge_pile<3>(1000, false)), jolt_settings(kHalf));
+  JoltScene scene(poses(wedge_pile<3>(1000, false)), jolt_settings(kHalf, int(state.range(0))));
   run(state, scene, kPile);
 }
 void JoltPyramid_Jolt(benchmark::State& state) {
-  JoltScene scene(poses(wedge_jolt_pyramid()), jolt_settings(1.0));
+  JoltScene scene(poses(wedge_jolt_pyramid()), jolt_settings(1.0, int(state.range(0))));
   run(state, scene, kJoltPyramid);
 }
-BENCHMARK(Pile3D_Jolt)->Iterations(kPile.timed)->Unit(benchmark::kMillisecond);
-BENCHMARK(JoltPyramid_Jolt)->Iterations(kJoltPyramid.timed)->Unit(benchmark::kMillisecond);
+const bool registered_jolt = [] {
+  add("Pile3D_Jolt", Pile3D_Jolt, kPile.timed);
+  add("JoltPyramid_Jolt", JoltPyramid_Jolt, kJoltPyramid.timed);
+  return true;
+}();
 #endif
 
 }  // namespace

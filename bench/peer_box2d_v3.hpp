@@ -1,7 +1,8 @@
 // Box2D v3 (erincatto/box2d, C API) as a peer of wedge_bench_peers, built from a local source checkout
 // (-DWEDGE_BOX2D_V3_DIR=...; never vendored, never needed by CI). The scene copies every box's centre and
 // angle from a Wedge 2D world (wedge_scenes.hpp) and uses Box2D v3's own defaults otherwise: 4 substeps,
-// soft contacts, its solver's relax and restitution passes, one worker thread. The ground is a static box
+// soft contacts, its solver's relax and restitution passes; one worker thread, or more through Box2D
+// v3's own scheduler (b2WorldDef::workerCount, as its samples run it). The ground is a static box
 // of half size 100 x 1 m under y = 0, as in Box2D's own large_pyramid benchmark.
 #pragma once
 
@@ -15,8 +16,9 @@ namespace wedge::bench {
 
 class Box2DV3Scene {
  public:
-  Box2DV3Scene(const World<2>& layout, bool sleep) {
+  Box2DV3Scene(const World<2>& layout, bool sleep, int workers = 1) {
     b2WorldDef def = b2DefaultWorldDef();
+    def.workerCount = workers;
     def.gravity = b2Vec2{0.0f, float(-kGravity)};
     def.enableSleep = sleep;
     world_ = b2CreateWorld(&def);

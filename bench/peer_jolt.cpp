@@ -8,6 +8,7 @@
 // (Jolt.h first: the other Jolt headers rely on it)
 #include <Jolt/Core/Factory.h>
 #include <Jolt/Core/JobSystemSingleThreaded.h>
+#include <Jolt/Core/JobSystemThreadPool.h>
 #include <Jolt/Core/TempAllocator.h>
 #include <Jolt/Physics/Body/BodyCreationSettings.h>
 #include <Jolt/Physics/Collision/Shape/BoxShape.h>
@@ -60,14 +61,18 @@ void init_once() {
 }  // namespace
 
 struct JoltScene::Impl {
-  explicit Impl(std::size_t bodies) : temp(64 * 1024 * 1024), jobs(JPH::cMaxPhysicsJobs) {
+  Impl(std::size_t bodies, int threads) : temp(64 * 1024 * 1024) {
+    if (threads > 1)
+      jobs = std::make_unique<JPH::JobSystemThreadPool>(JPH::cMaxPhysicsJobs, JPH::cMaxPhysicsBarriers, threads - 1);
+    else
+      jobs = std::make_unique<JPH::JobSystemSingleThreaded>(JPH::cMaxPhysicsJobs);
     system.Init(JPH::uint(bodies) + 16, 0, 65536, 65536, layers, object_vs_bp, pairs);
   }
   BroadPhaseLayers layers;
   ObjectVsBroadPhase object_vs_bp;
   ObjectPairs pairs;
   JPH::TempAllocatorImpl temp;
-  JPH::JobSystemSingleThreaded jobs;
+  std::unique_ptr<JPH::JobSystem> jobs;
   JPH::PhysicsSystem system;
   std::vector<JPH::BodyID> boxes;
   float dt = 0.0f;
@@ -76,7 +81,7 @@ struct JoltScene::Impl {
 
 JoltScene::JoltScene(const std::vector<BoxPose>& boxes, const JoltSettings& s) {
   init_once();
-  impl_ = std::make_unique<Impl>(boxes.size());
+  impl_ = std::make_unique<Impl>(boxes.size(), s.threads);
   impl_->dt = float(s.dt);
   impl_->system.SetGravity(JPH::Vec3(0.0f, float(-s.gravity), 0.0f));
   JPH::BodyInterface& bi = impl_->system.GetBodyInterface();
@@ -103,7 +108,7 @@ JoltScene::JoltScene(const std::vector<BoxPose>& boxes, const JoltSettings& s) {
 
 JoltScene::~JoltScene() = default;
 
-void JoltScene::step() { impl_->system.Update(impl_->dt, 1, &impl_->temp, &impl_->jobs); }
+void JoltScene::step() { impl_->system.Update(impl_->dt, 1, &impl_->temp, impl_->jobs.get()); }
 
 double JoltScene::max_speed() const {
   double v = 0.0;

@@ -5,7 +5,8 @@
 // (bench_peers.cpp), so that this header includes neither Jolt nor Eigen: see peer_jolt.cpp. Everything
 // else is Jolt's default: 10 velocity and 2 position iterations, one collision step per update, box shapes
 // with their default convex radius, friction combined as the geometric mean (0.6 for 0.6 and 0.6, as
-// Wedge's), restitution 0. One thread (JobSystemSingleThreaded), as Wedge runs. The ground is a static box
+// Wedge's), restitution 0. One thread (JobSystemSingleThreaded), or Jolt's JobSystemThreadPool with
+// threads - 1 workers beside the calling thread (as Jolt's samples run it). The ground is a static box
 // of half size 500 x 1 x 500 m under y = 0.
 #pragma once
 
@@ -27,6 +28,7 @@ struct JoltSettings {
   double gravity = 9.81;    // m/s^2 along -y
   double dt = 1.0 / 60.0;   // s per step
   bool sleep = false;
+  int threads = 1;          // the calling thread included
 };
 
 class JoltScene {

@@ -242,6 +242,13 @@ TEST_CASE("wedge simulate: --every, --out, --hash and --dt", "[cli]") {
     CHECK(dir.run("simulate projectile.json --steps 20 --hash").out == r.out);
     CHECK(dir.run("simulate projectile.json --steps 21 --hash").lines().back().at("state_hash") != hash);
   }
+  SECTION("--workers 2 writes the same states, bit for bit, as one thread") {
+    // (The shipped 3D pyramid, 211 boxes: big enough that its largest colours are split.)
+    const std::string scene = std::string(WEDGE_SOURCE_DIR) + "/scenes/pyramid_3d.json";
+    const Result one = dir.run("simulate " + scene + " --steps 60 --every 20 --hash");
+    REQUIRE(one.code == 0);
+    CHECK(dir.run("simulate " + scene + " --steps 60 --every 20 --hash --workers 2").out == one.out);
+  }
   SECTION("--dt overrides the scene's timestep") {
     const std::vector<json> lines = dir.run("simulate projectile.json --steps 4 --dt 0.025").lines();
     REQUIRE(lines.size() == 5);
@@ -350,6 +357,8 @@ TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli
       {"dt zero", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 0", "--dt"},
       {"dt negative", R"({"dim": 2, "bodies": []})", "--steps 1 --dt=-0.01", "--dt"},
       {"every zero", R"({"dim": 2, "bodies": []})", "--steps 1 --every 0", "--every"},
+      {"workers zero", R"({"dim": 2, "bodies": []})", "--steps 1 --workers 0", "--workers must be an integer in 1..64"},
+      {"workers not a number", R"({"dim": 2, "bodies": []})", "--steps 1 --workers two", "--workers must be an integer"},
       {"dt too large", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 1e10", "--dt must be a step size in [1e-6, 0.1] s"},
       {"dt too small", R"({"dim": 2, "bodies": []})", "--steps 1 --dt 1e-9", "--dt"},
       {"timestep too large", R"({"dim": 2, "timestep": 1, "bodies": []})", "--steps 1", "timestep: must be in"},

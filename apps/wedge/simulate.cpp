@@ -1,8 +1,9 @@
-// wedge simulate SCENE.json --steps N [--dt H] [--every K] [--out FILE] [--hash]
+// wedge simulate SCENE.json --steps N [--dt H] [--every K] [--out FILE] [--hash] [--workers N]
 //
 // Loads a scene, steps the world N times with step H and writes one JSON object per line (JSON Lines)
 // for step 0 and every K-th step: time, total energy, momenta and every body's state. With --hash a final
-// line {"state_hash": "<16 hex digits>"} carries World::state_hash() after the last step.
+// line {"state_hash": "<16 hex digits>"} carries World::state_hash() after the last step. --workers
+// splits each step over N threads; the states are bit-identical for any N.
 // Formats: docs/scene-format.md.
 #include <CLI/CLI.hpp>
 #include <cinttypes>
@@ -20,11 +21,12 @@ namespace wedge::cli {
 namespace {
 
 template <int N>
-int simulate(const Json& doc, const SimulateOptions& options, const StepOptions& run) {
+int simulate(const Json& doc, const SimulateOptions& options, const StepOptions& run, int workers) {
   const std::string& file = options.scene;
   const Scene<N> scene = load_scene<N>(doc, file);
   const double h = run.dt ? *run.dt : scene.timestep;
   World<N> world = scene.make_world(file);
+  world.settings().workers = workers;
 
   OutputSink out(options.out);  // nothing appears at --out unless the whole run succeeds
   auto emit = [&](const OutJson& line) {
@@ -72,15 +74,19 @@ CLI::App* add_simulate_verb(CLI::App& app, SimulateOptions& o) {
   cmd->add_flag("--hash", o.hash,
                 "After the last state, write a line {\"state_hash\": \"<16 hex digits>\"} "
                 "(World::state_hash of the final state)");
+  cmd->add_option("--workers", o.workers,
+                  "Threads per step, 1..64 (default 1); the states are bit-identical for any number")
+      ->type_name("N");
   cmd->footer(kExitCodesText);
   return cmd;
 }
 
 int run_simulate(const SimulateOptions& o) {
   const StepOptions run = parse_step_options(o.scene, o.steps, o.dt, o.every);
+  const int workers = parse_workers(o.scene, o.workers);
   const Json doc = read_json_file(o.scene);
   const int n = read_dim(doc, o.scene);
-  return with_dim(n, [&](auto dim) { return simulate<decltype(dim)::value>(doc, o, run); });
+  return with_dim(n, [&](auto dim) { return simulate<decltype(dim)::value>(doc, o, run, workers); });
 }
 
 }  // namespace wedge::cli

@@ -83,6 +83,14 @@ inline StepOptions parse_step_options(const std::string& scene, const std::strin
   return run;
 }
 
+// --workers N (WorldSettings::workers, 1..64; default 1); throws Failure naming `scene`.
+inline int parse_workers(const std::string& scene, const std::string& text) {
+  std::int64_t n = 1;
+  if (!text.empty() && (!parse_int64(text, n) || n < 1 || n > 64))
+    throw Failure(scene + ": --workers must be an integer in 1..64 (got '" + text + "')");
+  return int(n);
+}
+
 // The first body whose state is not finite and the quantity that is not: {-1, ""} if all are.
 template <int N>
 std::pair<int, const char*> first_non_finite_state(const World<N>& world) {

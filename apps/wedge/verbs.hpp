@@ -22,7 +22,7 @@ int run_inertia(const InertiaOptions& options);
 // Numeric options are kept as text and checked by run_simulate, so that every message names the scene.
 struct SimulateOptions {
   std::string scene;
-  std::string steps, dt, every;
+  std::string steps, dt, every, workers;
   std::string out;
   bool hash = false;
 };
