@@ -3,6 +3,7 @@
 // number of workers, in every solver and dimension, for piles large enough that the solver's colours
 // are split.
 #include <algorithm>
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <fstream>
@@ -132,6 +133,24 @@ TEST_CASE("workers: a helper that fell asleep wakes for the next loop; copies ha
   const std::vector<Range> c = ranges_of(copy, 100, 10);
   REQUIRE(c.size() == 2);
   CHECK(c[1].thread != r[1].thread);
+}
+
+TEST_CASE("workers: an exception on any thread reaches the caller once all ranges are done", "[workers]") {
+  Workers two(2);
+  for (const int bad : {10, 90}) {  // in the calling thread's range, then in the helper's
+    INFO("item " << bad << " throws");
+    std::atomic<int> done{0};
+    CHECK_THROWS_WITH(two.for_ranges(100, 10,
+                                     [&](int begin, int end) {
+                                       for (int i = begin; i < end; ++i) {
+                                         if (i == bad) throw Error("item " + std::to_string(i));
+                                         ++done;
+                                       }
+                                     }),
+                      "item " + std::to_string(bad));
+    CHECK(done == 50 + bad % 50);  // the other range ran to its end, this one up to the throw
+    check_cover(ranges_of(two, 100, 10), 100);            // and the workers still work
+  }
 }
 
 TEST_CASE("workers: out of 1..64 is refused with a message naming the setting", "[workers]") {

@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <exception>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -34,6 +36,13 @@ struct Workers::Pool {
   Call call = nullptr;
   void* context = nullptr;
   int parts = 0;
+  std::mutex error_mutex;
+  std::exception_ptr error;  // the first exception of the current job, rethrown by run() once all are done
+
+  void keep(std::exception_ptr e) {
+    const std::lock_guard<std::mutex> lock(error_mutex);
+    if (!error) error = std::move(e);
+  }
 
   explicit Pool(int helpers) {
     for (int i = 1; i <= helpers; ++i) threads.emplace_back([this, i] { serve(i); });
@@ -50,7 +59,13 @@ struct Workers::Pool {
     for (;;) {
       seen = next_epoch(seen);
       if (stop) return;
-      if (part < parts) call(context, part, parts);
+      if (part < parts) {
+        try {
+          call(context, part, parts);
+        } catch (...) {
+          keep(std::current_exception());
+        }
+      }
       pending.fetch_sub(1, std::memory_order_release);
     }
   }
@@ -97,14 +112,21 @@ void Workers::run(Call call, void* context, int parts) {
   p.call = call;
   p.context = context;
   p.parts = parts;
+  p.error = nullptr;
   p.pending.store(int(p.threads.size()), std::memory_order_relaxed);
   p.epoch.fetch_add(1);
   if (p.sleepers.load() > 0) p.epoch.notify_all();
-  call(context, 0, parts);
+  try {
+    call(context, 0, parts);
+  } catch (...) {
+    p.keep(std::current_exception());
+  }
+  // Always wait for the helpers, even after an exception here: they use the caller's stack.
   for (int i = 1; p.pending.load(std::memory_order_acquire) != 0; ++i) {
     pause();
     if (i % 1024 == 0) std::this_thread::yield();  // (a helper still waking from its sleep)
   }
+  if (p.error) std::rethrow_exception(p.error);
 }
 
 }  // namespace wedge::parallel

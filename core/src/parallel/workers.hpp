@@ -33,8 +33,8 @@ class Workers {
   void resize(int count);
 
   // Calls fn(begin, end) on contiguous ranges covering [0, n), one per thread, when every range gets at
-  // least `grain` items; else fn(0, n) on the calling thread. Returns when all ranges are done. fn must
-  // not throw.
+  // least `grain` items; else fn(0, n) on the calling thread. Returns when all ranges are done; if fn
+  // threw on any thread, rethrows the first exception then.
   template <class F>
   void for_ranges(int n, int grain, F&& fn) {
     const int parts = count_ > 1 && grain > 0 ? std::min(count_, n / grain) : 1;
@@ -48,7 +48,7 @@ class Workers {
   }
 
   // Calls fn(part, parts) for part = 0 .. parts - 1 (at most count()), each on its own thread, the
-  // calling thread taking part 0; returns when all are done. fn must not throw.
+  // calling thread taking part 0; returns when all are done, rethrowing the first exception fn threw.
   template <class F>
   void for_parts(int parts, F&& fn) {
     if (parts <= 1) {
