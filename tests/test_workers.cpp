@@ -120,7 +120,7 @@ TEST_CASE("workers: for_ranges covers every item once, on the helpers only when 
   CHECK(threads.size() == 4);
 }
 
-TEST_CASE("workers: a helper that fell asleep wakes for the next loop; copies have their own threads",
+TEST_CASE("workers: a helper that fell asleep wakes for the next loop, and a copy has threads of its own",
           "[workers]") {
   Workers two(2);
   check_cover(ranges_of(two, 100, 10), 100);
