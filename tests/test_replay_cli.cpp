@@ -113,6 +113,10 @@ TEST_CASE("wedge replay: shipped replays reproduce their recorded state hashes",
     const auto lines = res.lines();
     REQUIRE(!lines.empty());
     CHECK(lines.back()["state_hash"].get<std::string>() == r["state_hash"].get<std::string>());
+    // Two workers: the same bits (WorldSettings::workers; tests/test_workers.cpp splits large piles).
+    const Result two = dir.run("replay " + path(r["scene"].get<std::string>()) + recs +
+                               " --every 1000000 --hash --workers 2");
+    CHECK(two.out == res.out);
   }
   for (const auto& e : fs::recursive_directory_iterator(kRoot / "recordings")) {
     if (e.path().extension() != ".jsonl") continue;
@@ -296,6 +300,9 @@ TEST_CASE("wedge replay: bad recordings and misfits exit 2 naming the file, with
   refused("mode4d.jsonl", good, "scenes/projectile_3d.json", "4D rotation mode");
   refused("nograv.jsonl", header + "{\"t\":0,\"type\":\"motion\",\"acceleration\":[0,-1,0],\"tilt\":false}\n",
           "scenes/free_5d.json", "no gravity");
+  const Result workers = dir.run("replay " + path("scenes/toy_table_4d.json") + " x.jsonl --workers 0");
+  CHECK(workers.code == 2);
+  CHECK(workers.err.find("toy_table_4d.json: --workers must be an integer in 1..64") != std::string::npos);
   const Result missing = dir.run("replay " + path("scenes/toy_table_4d.json") + " nowhere.jsonl");
   CHECK(missing.code == 2);
   CHECK(missing.err.find("nowhere.jsonl") != std::string::npos);

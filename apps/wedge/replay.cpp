@@ -1,5 +1,5 @@
 // wedge replay SCENE.json RECORDING... [--out STATES.jsonl] [--every K] [--events EVENTS.jsonl] [--hash]
-//                                       [--until T] [--dt H]
+//                                       [--until T] [--dt H] [--workers N]
 //
 // Replays recorded device streams (docs/recording-format.md) into a scene through the input layer, at
 // the scene's fixed step: each step reads the input frame at its start time, applies it (grabs, torques,
@@ -29,11 +29,12 @@ namespace {
 
 template <int N>
 int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>& dt, std::int64_t every,
-           const std::optional<double>& until) {
+           const std::optional<double>& until, int workers) {
   const std::string& file = o.scene;
   const Scene<N> scene = load_scene<N>(doc, file);
   const double h = dt ? *dt : scene.timestep;
   World<N> world = scene.make_world(file);
+  world.settings().workers = workers;
 
   ReplayInput<N> replay(scene, world, o.recordings, file);
   const input::RecordingSource& src = replay.source();
@@ -123,6 +124,9 @@ CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& o) {
   cmd->add_option("--until", o.until, "Stop at T seconds (default: the end of the recordings)")->type_name("T");
   cmd->add_option("--dt", o.dt, "Step size in seconds (default: the scene's \"timestep\", else 1/120)")
       ->type_name("H");
+  cmd->add_option("--workers", o.workers,
+                  "Threads per step, 1..64 (default 1); the states are bit-identical for any number")
+      ->type_name("N");
   cmd->footer(kExitCodesText);
   return cmd;
 }
@@ -130,6 +134,7 @@ CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& o) {
 int run_replay(const ReplayOptions& o) {
   // Options first (so that every message names the scene), then the scene and the recordings.
   const StepOptions run = parse_step_options(o.scene, "0", o.dt, o.every);
+  const int workers = parse_workers(o.scene, o.workers);
   std::optional<double> until;
   if (!o.until.empty()) {
     double t = 0.0;
@@ -140,7 +145,7 @@ int run_replay(const ReplayOptions& o) {
   if (!o.out.empty() && o.out == o.events) throw Failure(o.scene + ": --out and --events must be different files");
   const Json doc = read_json_file(o.scene);
   const int n = read_dim(doc, o.scene);
-  return with_dim(n, [&](auto dim) { return replay<decltype(dim)::value>(doc, o, run.dt, run.every, until); });
+  return with_dim(n, [&](auto dim) { return replay<decltype(dim)::value>(doc, o, run.dt, run.every, until, workers); });
 }
 
 }  // namespace wedge::cli

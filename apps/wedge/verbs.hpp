@@ -69,11 +69,12 @@ CLI::App* add_import_verb(CLI::App& app, ImportOptions& options);
 int run_import(const ImportOptions& options);
 
 // wedge replay SCENE.json RECORDING... [--out FILE] [--every K] [--events FILE] [--hash] [--until T] [--dt H]
+//                                     [--workers N]
 struct ReplayOptions {
   std::string scene;
   std::vector<std::string> recordings;
   std::string out, events;
-  std::string every, until, dt;
+  std::string every, until, dt, workers;
   bool hash = false;
 };
 CLI::App* add_replay_verb(CLI::App& app, ReplayOptions& options);
