@@ -83,16 +83,16 @@ template <int N>
 void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   s.ended.clear();
   // Usually (a resting heap) the list is unchanged: keep it rather than copy every pair (4D: kilobytes).
-  std::size_t same = 0;
-  for (const auto& [a, b] : s.candidate_pairs) {
-    if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
-    if (same == s.pairs.size() || s.pairs[same].a != a || s.pairs[same].b != b) {
-      same = s.pairs.size() + 1;
-      break;
+  const auto unchanged = [&] {
+    std::size_t k = 0;
+    for (const auto& [a, b] : s.candidate_pairs) {
+      if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
+      if (k == s.pairs.size() || s.pairs[k].a != a || s.pairs[k].b != b) return false;
+      ++k;
     }
-    ++same;
-  }
-  if (same == s.pairs.size()) return;
+    return k == s.pairs.size();
+  };
+  if (unchanged()) return;
   s.next_pairs.clear();
   std::size_t old = 0;
   auto drop = [&s](const Pair<N>& p) {
@@ -270,16 +270,16 @@ void colour_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
   s.constraint_pairs.swap(s.colour_order);
 }
 
-// The constraint of pair pi, as constraints[index] (whose `first`, set already, says where its points go).
+// The constraint of pair pi, as constraints[index], its points from points[first] on.
 // Each point keeps its lever arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper
 // section 6), and takes the static friction coefficient if it was not slipping at the start of the
 // step, else the kinetic one.
 template <int N>
 void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
-                      double slip_speed, double match_distance, int pi, int index) {
+                      double slip_speed, double match_distance, int pi, int index, int first) {
   Pair<N>& p = s.pairs[pi];
   Constraint<N> c;
-  c.first = s.constraints[index].first;
+  c.first = first;
   c.pair = int(pi);
   c.a = int(p.a);
   c.b = int(p.b);
@@ -360,7 +360,8 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   s.points.resize(total);
   s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int begin, int end) {
     for (int k = begin; k < end; ++k)
-      build_constraint(s, bodies, materials, slip_speed, match_distance, s.constraint_pairs[k], k);
+      build_constraint(s, bodies, materials, slip_speed, match_distance, s.constraint_pairs[k], k,
+                       s.constraints[k].first);
   });
 }
 
