@@ -76,9 +76,14 @@ struct SolverBody {
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
   double inv_mass = 0.0;
+  bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
+  // The inverse inertia is iso_inv_inertia times the identity in every frame (a body whose inertia is
+  // the same about every plane: a cube, a ball). The impulse passes then scale r ^ j instead of
+  // multiplying it by the matrix, and inv_inertia is that exactly.
+  bool isotropic = false;
+  double iso_inv_inertia = 0.0;
   BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
   int level = 0;                               // contact-graph level (shock propagation)
-  bool frozen = false;                         // infinite mass for the current shock-propagation level
   std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
   // Soft step: where the body was when the step began, and how far it has moved and turned since
   // (the turn as a matrix, dq = R R0^-1), so the sub-steps see each contact's current separation.
@@ -100,7 +105,7 @@ struct PointConstraint {
   double normal_impulse = 0.0;   // N s, accumulated in the current stage
   double normal_total = 0.0;     // N s, over all stages (events, ContactInfo)
   // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
-  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb, wa, wb).
+  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb).
   Eigen::Matrix<double, kBiv<N>, 1> jn_a, jn_b, dn_a, dn_b;
   // Friction (and both passes of the paper's solver).
   double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
@@ -111,7 +116,6 @@ struct PointConstraint {
   // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
   // that makes it (of the pair, or of the unfrozen body during shock propagation).
   Mat<N> tangent_mass;
-  Eigen::Matrix<double, kBiv<N>, N> wa, wb;         // I^-1 [r]_* for each body (angular change per impulse)
   // K n, of the bodies that can move (the pair's, or the unfrozen body's in shock propagation): how a
   // friction impulse j_t changes the normal velocity, n . K j_t = (K n) . j_t.
   Vec<N> kn = Vec<N>::Zero();
@@ -341,6 +345,25 @@ inline bool moves(const ContactState<N>& s, const std::vector<Body<N>>& bodies, 
 template <int N>
 inline bool moving_kinematic(const Body<N>& b) {
   return b.type == BodyType::Kinematic && (b.velocity.squaredNorm() > 0.0 || b.angular_velocity.c.squaredNorm() > 0.0);
+}
+
+// The change of the body's angular velocity per impulse j at lever arm r: I^-1 (r ^ j). (Formed here
+// rather than kept per point as the matrix I^-1 [r]_*, which was 40% of a 4D point's bytes: the passes
+// over the points are bound by memory, not arithmetic.)
+template <int N>
+inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const SolverBody<N>& b, const Vec<N>& r, const Vec<N>& j) {
+  const Bivector<N> t = outer<N>(r, j);
+  if (b.isotropic) return b.iso_inv_inertia * t.c;
+  return b.inv_inertia * t.c;
+}
+
+// The body's part of K = delta/m + [r]_*^T I^-1 [r]_* without the 1/m: [r]_*^T I^-1 [r]_*, which for an
+// isotropic body is s (|r|^2 1 - r r^T) (r . (r ^ a) = |r|^2 a - (r . a) r).
+template <int N>
+inline Mat<N> angular_mass_term(const SolverBody<N>& b, const Vec<N>& r) {
+  if (b.isotropic) return b.iso_inv_inertia * (r.squaredNorm() * Mat<N>::Identity() - r * r.transpose());
+  const WedgeMat<N> jr = wedge_matrix<N>(r);
+  return jr.transpose() * (b.inv_inertia * jr);
 }
 
 // Relative velocity of b with respect to a at the point: (v_b + r_b . w_b) - (v_a + r_a . w_a).

@@ -14,11 +14,11 @@ template <int N>
 void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& j) {
   if (!a.frozen) {
     a.v -= a.inv_mass * j;
-    a.w.c -= p.wa * j;
+    a.w.c -= angular_change(a, p.ra, j);
   }
   if (!b.frozen) {
     b.v += b.inv_mass * j;
-    b.w.c += p.wb * j;
+    b.w.c += angular_change(b, p.rb, j);
   }
 }
 

@@ -185,6 +185,12 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
   }
 }
 
+// s times the identity, exactly.
+template <int N>
+bool is_isotropic(const BivMat<N>& m) {
+  return m == m(0, 0) * BivMat<N>::Identity();
+}
+
 // Before the step's first stage: inverse world inertia of every awake dynamic body, and velocities.
 template <int N>
 void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
@@ -198,9 +204,16 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
     sb.frozen = false;
     if (moves(s, bodies, i)) {
       sb.inv_mass = b.inv_mass;
-      sb.inv_inertia = b.world_inv_inertia();
+      sb.isotropic = is_isotropic<N>(b.inv_inertia);
+      sb.iso_inv_inertia = b.inv_inertia(0, 0);
+      if (sb.isotropic)
+        sb.inv_inertia = sb.iso_inv_inertia * BivMat<N>::Identity();  // (turning it changes nothing)
+      else
+        sb.inv_inertia = b.world_inv_inertia();
     } else {
       sb.inv_mass = 0.0;
+      sb.isotropic = true;
+      sb.iso_inv_inertia = 0.0;
       sb.inv_inertia.setZero();
     }
   });
@@ -299,17 +312,15 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     PointConstraint<N> q;
     q.ra = p.arm_a[k];
     q.rb = p.arm_b[k];
-    const WedgeMat<N> ja = wedge_matrix<N>(q.ra), jb = wedge_matrix<N>(q.rb);
-    q.wa = sa.inv_inertia * ja;
-    q.wb = sb.inv_inertia * jb;
-    set_effective_masses(
-        q, Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + ja.transpose() * q.wa + jb.transpose() * q.wb),
-        c.normal);
+    set_effective_masses(q,
+                         Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + angular_mass_term(sa, q.ra) +
+                                angular_mass_term(sb, q.rb)),
+                         c.normal);
     q.pseudo_mass = q.normal_mass;
-    q.jn_a = ja * c.normal;
-    q.jn_b = jb * c.normal;
-    q.dn_a = q.wa * c.normal;
-    q.dn_b = q.wb * c.normal;
+    q.jn_a = outer<N>(q.ra, c.normal).c;
+    q.jn_b = outer<N>(q.rb, c.normal).c;
+    q.dn_a = angular_change(sa, q.ra, c.normal);
+    q.dn_b = angular_change(sb, q.rb, c.normal);
     q.gap = -cp.depth;
     const Vec<N> u = relative_velocity(sa, sb, q);
     q.approach = c.normal.dot(u);

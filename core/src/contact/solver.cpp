@@ -113,8 +113,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.points[k];
         const Vec<N>& r = fa ? p.rb : p.ra;
-        const auto& w = fa ? p.wb : p.wa;  // I^-1 [r]_* of the moving body
-        set_effective_masses(p, Mat<N>(moving.inv_mass * Mat<N>::Identity() + wedge_matrix<N>(r).transpose() * w),
+        set_effective_masses(p, Mat<N>(moving.inv_mass * Mat<N>::Identity() + angular_mass_term(moving, r)),
                              c.normal);
       }
     }
@@ -172,9 +171,9 @@ void correct_positions(ContactState<N>& s, const ContactSettings& settings, doub
         const Vec<N> j = (next - p.pseudo) * c.normal;
         p.pseudo = next;
         a.vp -= a.inv_mass * j;
-        a.wp.c -= p.wa * j;
+        a.wp.c -= angular_change(a, p.ra, j);
         b.vp += b.inv_mass * j;
-        b.wp.c += p.wb * j;
+        b.wp.c += angular_change(b, p.rb, j);
       }
     }
 }
