@@ -233,6 +233,7 @@ struct ContactState {
 // work (about a microsecond; a body update or a constraint visit takes 20-200 ns).
 constexpr int kBodyGrain = 128;
 constexpr int kConstraintGrain = 32;
+constexpr int kPointGrain = 64;  // solver passes: a point visit takes 10-60 ns
 
 // fn(i) for every body, split over the workers.
 template <int N, class F>
@@ -260,7 +261,10 @@ void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
   }
   for (int g = 0; g + 1 < groups; ++g) {
     const int first = s.colour_start[g], last = s.colour_start[g + 1];
-    const int parts = std::min(s.workers.count(), (last - first) / kConstraintGrain);
+    if (first == last) continue;
+    const int begin_point = s.constraints[first].first;
+    const int end_point = s.constraints[last - 1].first + s.constraints[last - 1].count;
+    const int parts = std::min(s.workers.count(), (end_point - begin_point) / kPointGrain);
     if (parts <= 1) {
       for (int k = first; k < last; ++k) fn(s.constraints[k]);
       continue;
@@ -269,8 +273,6 @@ void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
     s.workers.for_parts(parts, [&](int part, int of) {
       const auto cut = [&](int i) {
         if (i == of) return last;
-        const Constraint<N>& end = s.constraints[last - 1];
-        const int begin_point = s.constraints[first].first, end_point = end.first + end.count;
         const int target = begin_point + int(std::int64_t(end_point - begin_point) * i / of);
         return int(std::lower_bound(s.constraints.begin() + first, s.constraints.begin() + last, target,
                                     [](const Constraint<N>& c, int t) { return c.first < t; }) -
