@@ -8,6 +8,7 @@
 
 #include "contact/contact_system.hpp"
 #include "linalg/decompositions.hpp"
+#include "linalg/isotropic.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
@@ -18,11 +19,6 @@ namespace {
 template <class M>
 bool finite(const M& m) {
   return m.allFinite();
-}
-// A multiple of the identity, exactly (the inertia of a cube or a ball in any n).
-template <class M>
-bool isotropic(const M& m) {
-  return m == M(m(0, 0) * M::Identity());
 }
 }  // namespace
 
@@ -418,7 +414,7 @@ void World<N>::integrate_velocities(double h) {
     // Without a torque, a body whose inertia is isotropic (a cube, a ball) keeps its w exactly: w x I w
     // = 0, so the frame change and the gyroscopic solve are skipped (most of a pile's bodies).
     const bool torque = !b.torque.c.isZero(0.0);
-    if (torque || (settings_.gyroscopic && !isotropic(b.inertia))) {
+    if (torque || (settings_.gyroscopic && !linalg::is_isotropic(b.inertia))) {
       Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
       if (torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
       if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, settings_.gyroscopic_method);

@@ -349,14 +349,19 @@ inline bool moving_kinematic(const Body<N>& b) {
   return b.type == BodyType::Kinematic && (b.velocity.squaredNorm() > 0.0 || b.angular_velocity.c.squaredNorm() > 0.0);
 }
 
+// I^-1 t for a bivector t (world frame): a scale for an isotropic body.
+template <int N>
+inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const SolverBody<N>& b,
+                                                               const Eigen::Matrix<double, kBiv<N>, 1>& t) {
+  if (b.isotropic) return b.iso_inv_inertia * t;
+  return b.inv_inertia * t;
+}
 // The change of the body's angular velocity per impulse j at lever arm r: I^-1 (r ^ j). (Formed here
 // rather than kept per point as the matrix I^-1 [r]_*, which was 40% of a 4D point's bytes: the passes
 // over the points are bound by memory, not arithmetic.)
 template <int N>
 inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const SolverBody<N>& b, const Vec<N>& r, const Vec<N>& j) {
-  const Bivector<N> t = outer<N>(r, j);
-  if (b.isotropic) return b.iso_inv_inertia * t.c;
-  return b.inv_inertia * t.c;
+  return inverse_inertia_times(b, outer<N>(r, j).c);
 }
 
 // The body's part of K = delta/m + [r]_*^T I^-1 [r]_* without the 1/m: [r]_*^T I^-1 [r]_*, which for an

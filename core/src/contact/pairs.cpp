@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "contact/contact_system.hpp"
+#include "linalg/isotropic.hpp"
 #include "wedge/collision/narrow_phase.hpp"
 
 namespace wedge::contact {
@@ -185,12 +186,6 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
   }
 }
 
-// s times the identity, exactly.
-template <int N>
-bool is_isotropic(const BivMat<N>& m) {
-  return m == m(0, 0) * BivMat<N>::Identity();
-}
-
 // Before the step's first stage: inverse world inertia of every awake dynamic body, and velocities.
 template <int N>
 void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
@@ -204,7 +199,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
     sb.frozen = false;
     if (moves(s, bodies, i)) {
       sb.inv_mass = b.inv_mass;
-      sb.isotropic = is_isotropic<N>(b.inv_inertia);
+      sb.isotropic = linalg::is_isotropic(b.inv_inertia);
       sb.iso_inv_inertia = b.inv_inertia(0, 0);
       if (sb.isotropic)
         sb.inv_inertia = sb.iso_inv_inertia * BivMat<N>::Identity();  // (turning it changes nothing)
@@ -319,8 +314,8 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     q.pseudo_mass = q.normal_mass;
     q.jn_a = outer<N>(q.ra, c.normal).c;
     q.jn_b = outer<N>(q.rb, c.normal).c;
-    q.dn_a = angular_change(sa, q.ra, c.normal);
-    q.dn_b = angular_change(sb, q.rb, c.normal);
+    q.dn_a = inverse_inertia_times(sa, q.jn_a);
+    q.dn_b = inverse_inertia_times(sb, q.jn_b);
     q.gap = -cp.depth;
     const Vec<N> u = relative_velocity(sa, sb, q);
     q.approach = c.normal.dot(u);
