@@ -249,14 +249,15 @@ void for_each_constraint(ContactState<N>& s, F&& fn) {
     for (int k = begin; k < end; ++k) fn(s.constraints[k]);
   });
 }
-// fn(constraint) for every constraint in solver order, for passes that change the bodies' velocities:
-// colour by colour, each colour split over the workers (its constraints share no moving body), then the
-// uncoloured group in order on this thread. Without colours (the paper's solver), all in order.
+// fn(begin, end, independent) over the constraints in solver order, in runs, for passes that change the
+// bodies' velocities: colour by colour, each colour split over the workers (its constraints share no
+// moving body: independent, so a pass may interleave them and stay bit-identical), then the uncoloured
+// group in order on this thread (not independent). Without colours (the paper's solver), all in order.
 template <int N, class F>
-void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
+void for_each_constraint_run(ContactState<N>& s, F&& fn) {
   const int groups = int(s.colour_start.size()) - 1;
   if (groups <= 0) {
-    for (Constraint<N>& c : s.constraints) fn(c);
+    fn(0, int(s.constraints.size()), false);
     return;
   }
   for (int g = 0; g + 1 < groups; ++g) {
@@ -266,7 +267,7 @@ void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
     const int end_point = s.constraints[last - 1].first + s.constraints[last - 1].count;
     const int parts = std::min(s.workers.count(), (end_point - begin_point) / kPointGrain);
     if (parts <= 1) {
-      for (int k = first; k < last; ++k) fn(s.constraints[k]);
+      fn(first, last, true);
       continue;
     }
     // Equal shares of the colour's points (a constraint's cost is its points'), cut at constraints.
@@ -278,10 +279,41 @@ void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
                                     [](const Constraint<N>& c, int t) { return c.first < t; }) -
                    s.constraints.begin());
       };
-      for (int k = cut(part), end = cut(part + 1); k < end; ++k) fn(s.constraints[k]);
+      fn(cut(part), cut(part + 1), true);
     });
   }
-  for (int k = s.colour_start[groups - 1]; k < s.colour_start[groups]; ++k) fn(s.constraints[k]);
+  fn(s.colour_start[groups - 1], s.colour_start[groups], false);
+}
+// fn(constraint) for every constraint in solver order (as for_each_constraint_run).
+template <int N, class F>
+void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
+  for_each_constraint_run(s, [&](int begin, int end, bool) {
+    for (int k = begin; k < end; ++k) fn(s.constraints[k]);
+  });
+}
+
+// For passes that change the bodies' velocities point by point: one(c) per constraint in solver order,
+// except that consecutive constraints of one colour go two at a time to two(c, d). A point's update
+// reads the velocities the last one wrote, a chain of dependent arithmetic; two constraints of a colour
+// share no moving body, so their chains are independent, and taken point by point in turn (points_in_turn)
+// the processor overlaps them: each does exactly what it would alone, so the results are bit-identical.
+template <int N, class One, class Two>
+void for_each_constraint_in_pairs(ContactState<N>& s, One&& one, Two&& two) {
+  for_each_constraint_run(s, [&](int begin, int end, bool independent) {
+    int k = begin;
+    if (independent)
+      for (; k + 1 < end; k += 2) two(s.constraints[k], s.constraints[k + 1]);
+    for (; k < end; ++k) one(s.constraints[k]);
+  });
+}
+// fn(c, k) and fn(d, k) in turn for every point k of two independent constraints.
+template <int N, class F>
+inline void points_in_turn(const Constraint<N>& c, const Constraint<N>& d, F&& fn) {
+  const int m = std::max(c.count, d.count);
+  for (int k = 0; k < m; ++k) {
+    if (k < c.count) fn(c, k);
+    if (k < d.count) fn(d, k);
+  }
 }
 
 template <int N>

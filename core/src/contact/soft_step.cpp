@@ -56,50 +56,77 @@ void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstra
 // Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
-  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
-    for (int k = c.first; k < c.first + c.count; ++k) s.points[k].normal_total += s.points[k].normal_impulse;
-    apply_accumulated(s, c);
-  });
+  const auto apply = [&](const Constraint<N>& c, int k) {
+    PointConstraint<N>& p = s.points[c.first + k];
+    p.normal_total += p.normal_impulse;
+    apply_impulse(s.solver_bodies[c.a], s.solver_bodies[c.b], p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+  };
+  for_each_constraint_in_pairs(
+      s, [&](const Constraint<N>& c) { for (int k = 0; k < c.count; ++k) apply(c, k); },
+      [&](const Constraint<N>& c, const Constraint<N>& d) { points_in_turn(c, d, apply); });
 }
 
 // One pass over the contacts: per constraint the normal impulses first (soft when use_bias and
 // penetrating), then friction in the cone of the updated normal impulse.
 template <int N>
-void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
-  const double inv_h = 1.0 / h;
-  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
+struct ContactPass {
+  ContactState<N>& s;
+  double inv_h, push_speed;
+  bool use_bias;
+
+  void normal(const Constraint<N>& c, int k) const {
     SolverBody<N>& a = s.solver_bodies[c.a];
     SolverBody<N>& b = s.solver_bodies[c.b];
     const Vec<N>& n = c.normal;
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      const double sep = p.separation;
-      double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-      if (sep > 0.0) {
-        bias = sep * inv_h;  // speculative: may close the gap within the sub-step, no more
-      } else if (use_bias) {
-        bias = std::max(s.soft_mass_scale * s.soft_bias_rate * sep, -settings.contact_push_speed);
-        mass_scale = s.soft_mass_scale;
-        impulse_scale = s.soft_impulse_scale;
-      }
-      const double un = n.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
-      const double next =
-          std::max(p.normal_impulse - p.normal_mass * (mass_scale * un + bias) - impulse_scale * p.normal_impulse, 0.0);
-      const double change = next - p.normal_impulse;
-      p.normal_impulse = next;
-      p.normal_total += change;
-      apply_normal_impulse(a, b, p, n, change);
+    PointConstraint<N>& p = s.points[c.first + k];
+    const double sep = p.separation;
+    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+    if (sep > 0.0) {
+      bias = sep * inv_h;  // speculative: may close the gap within the sub-step, no more
+    } else if (use_bias) {
+      bias = std::max(s.soft_mass_scale * s.soft_bias_rate * sep, -push_speed);
+      mass_scale = s.soft_mass_scale;
+      impulse_scale = s.soft_impulse_scale;
     }
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      if (!(p.friction > 0.0) || (p.normal_impulse <= 0.0 && p.tangent_impulse.isZero(0.0))) continue;
-      const Vec<N> u = relative_velocity(a, b, p);
-      const Vec<N> next = friction_update(p, n, Vec<N>(u - n.dot(u) * n));
-      const Vec<N> change = next - p.tangent_impulse;
-      p.tangent_impulse = next;
-      apply_impulse(a, b, p, change);
-    }
-  });
+    const double un = n.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
+    const double next =
+        std::max(p.normal_impulse - p.normal_mass * (mass_scale * un + bias) - impulse_scale * p.normal_impulse, 0.0);
+    const double change = next - p.normal_impulse;
+    p.normal_impulse = next;
+    p.normal_total += change;
+    apply_normal_impulse(a, b, p, n, change);
+  }
+
+  void friction(const Constraint<N>& c, int k) const {
+    PointConstraint<N>& p = s.points[c.first + k];
+    if (!(p.friction > 0.0) || (p.normal_impulse <= 0.0 && p.tangent_impulse.isZero(0.0))) return;
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    const Vec<N>& n = c.normal;
+    const Vec<N> u = relative_velocity(a, b, p);
+    const Vec<N> next = friction_update(p, n, Vec<N>(u - n.dot(u) * n));
+    const Vec<N> change = next - p.tangent_impulse;
+    p.tangent_impulse = next;
+    apply_impulse(a, b, p, change);
+  }
+
+  void one(const Constraint<N>& c) const {
+    for (int k = 0; k < c.count; ++k) normal(c, k);
+    for (int k = 0; k < c.count; ++k) friction(c, k);
+  }
+  // Two constraints of one colour in turn (for_each_constraint_in_pairs).
+  void two(const Constraint<N>& c, const Constraint<N>& d) const {
+    points_in_turn(c, d, [this](const Constraint<N>& e, int k) { normal(e, k); });
+    points_in_turn(c, d, [this](const Constraint<N>& e, int k) { friction(e, k); });
+  }
+};
+
+template <int N>
+void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
+  const ContactPass<N> pass{s, 1.0 / h, settings.contact_push_speed, use_bias};
+  for_each_constraint_in_pairs(
+      s, [&](const Constraint<N>& c) { pass.one(c); },
+      [&](const Constraint<N>& c, const Constraint<N>& d) { pass.two(c, d); });
 }
 
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
