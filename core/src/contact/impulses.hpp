@@ -10,12 +10,6 @@
 
 namespace wedge::contact {
 
-// friction_update is forced inline into the passes and project_to_cone, its rare slow path, kept out:
-// called, it spilled the slip to the stack, read back as wider loads that stall on the narrower stores
-// they follow (2D pyramid -11%, 4D pile -7%). Forcing apply_impulse inline too made the 3D pile 19%
-// slower, so that is left to the compiler.
-#define WEDGE_HOT_INLINE [[gnu::always_inline]] inline
-
 template <int N>
 void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& j) {
   if (!a.frozen) {
@@ -72,8 +66,11 @@ template <int N>
 // The friction impulse a point should hold after a pass, given its tangential slip velocity: the
 // impulse that stops the slip if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when
 // the step began), else mu j_n against the slip.
+// (Forced inline into the passes, its rare slow path project_to_cone kept out: called, it spilled the
+// slip to the stack, read back as wider loads that stall on the narrower stores they follow; 2D pyramid
+// -11%, 4D pile -7%. Forcing apply_impulse inline too made the 3D pile 19% slower: left to the compiler.)
 template <int N>
-WEDGE_HOT_INLINE Vec<N> friction_update(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& slip) {
+[[gnu::always_inline]] inline Vec<N> friction_update(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& slip) {
   const Vec<N> old = p.tangent_impulse;
   Vec<N> next = old - p.tangent_mass * slip;
   const double t2 = next.squaredNorm(), limit = p.friction * p.normal_impulse;
@@ -108,15 +105,16 @@ void store_velocities(ContactState<N>& s, std::vector<Body<N>>& bodies) {
   });
 }
 
-// Applies the constraint's accumulated impulses, normal and friction, to its solver bodies.
+// Applies point k's accumulated impulses, normal and friction, to the constraint's solver bodies.
+template <int N>
+void apply_accumulated_point(ContactState<N>& s, const Constraint<N>& c, int k) {
+  const PointConstraint<N>& p = s.points[c.first + k];
+  apply_impulse(s.solver_bodies[c.a], s.solver_bodies[c.b], p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+}
+// The same for every point of the constraint.
 template <int N>
 void apply_accumulated(ContactState<N>& s, const Constraint<N>& c) {
-  SolverBody<N>& a = s.solver_bodies[c.a];
-  SolverBody<N>& b = s.solver_bodies[c.b];
-  for (int k = c.first; k < c.first + c.count; ++k) {
-    const PointConstraint<N>& p = s.points[k];
-    apply_impulse(a, b, p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
-  }
+  for (int k = 0; k < c.count; ++k) apply_accumulated_point(s, c, k);
 }
 
 // Keeps this step's impulses, per feature, to start the next step from (warm start).

@@ -57,9 +57,8 @@ void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstra
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
   const auto apply = [&](const Constraint<N>& c, int k) {
-    PointConstraint<N>& p = s.points[c.first + k];
-    p.normal_total += p.normal_impulse;
-    apply_impulse(s.solver_bodies[c.a], s.solver_bodies[c.b], p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+    s.points[c.first + k].normal_total += s.points[c.first + k].normal_impulse;
+    apply_accumulated_point(s, c, k);
   };
   for_each_constraint_in_pairs(
       s, [&](const Constraint<N>& c) { for (int k = 0; k < c.count; ++k) apply(c, k); },
