@@ -56,8 +56,9 @@ void run(benchmark::State& state, Scene& scene, const Run& r) {
 template <int N>
 class WedgeScene {
  public:
-  explicit WedgeScene(World<N> w, int workers = 1) : world_(std::move(w)) {
+  explicit WedgeScene(World<N> w, int workers = 1, int substeps = 0) : world_(std::move(w)) {
     world_.settings().workers = workers;
+    if (substeps > 0) world_.settings().contact.substeps = substeps;
     for (int i = 0; i < world_.body_count(); ++i)
       if (world_.bodies()[std::size_t(i)].is_dynamic()) boxes_.push_back(BodyId{std::uint32_t(i)});
   }
@@ -85,6 +86,10 @@ void Pyramid2D_Wedge(benchmark::State& state) {
   WedgeScene<2> scene(pyramid(int(state.range(0))), int(state.range(1)));
   run(state, scene, kPyramid);
 }
+void Pyramid2D_Wedge_substeps4(benchmark::State& state) {
+  WedgeScene<2> scene(pyramid(int(state.range(0))), 1, 4);
+  run(state, scene, kPyramid);
+}
 void Pile3D_Wedge(benchmark::State& state) {
   WedgeScene<3> scene(wedge_pile<3>(1000, false), int(state.range(0)));
   run(state, scene, kPile);
@@ -92,6 +97,17 @@ void Pile3D_Wedge(benchmark::State& state) {
 void JoltPyramid_Wedge(benchmark::State& state) {
   WedgeScene<3> scene(wedge_jolt_pyramid(), int(state.range(0)));
   run(state, scene, kJoltPyramid);
+}
+// A 2D pyramid benchmark at 20, 40 and 100 rows, one thread.
+template <typename Fn>
+void add_rows(const char* name, Fn fn) {
+  benchmark::RegisterBenchmark(name, fn)
+      ->ArgName("rows")
+      ->Arg(20)
+      ->Arg(40)
+      ->Arg(100)
+      ->Iterations(kPyramid.timed)
+      ->Unit(benchmark::kMillisecond);
 }
 // Registers a benchmark once per thread count, the 2-thread run on wall time.
 template <typename Fn>
@@ -110,6 +126,7 @@ void add(const char* name, Fn fn, int timed, std::vector<std::int64_t> rows = {}
 }
 const bool registered_wedge = [] {
   add("Pyramid2D_Wedge", Pyramid2D_Wedge, kPyramid.timed, {20, 40, 100});
+  add_rows("Pyramid2D_Wedge_substeps4", Pyramid2D_Wedge_substeps4);
   add("Pile3D_Wedge", Pile3D_Wedge, kPile.timed);
   add("JoltPyramid_Wedge", JoltPyramid_Wedge, kJoltPyramid.timed);
   return true;
@@ -120,8 +137,13 @@ void Pyramid2D_Box2Dv3(benchmark::State& state) {
   Box2DV3Scene scene(pyramid(int(state.range(0))), false, int(state.range(1)));
   run(state, scene, kPyramid);
 }
+void Pyramid2D_Box2Dv3_substeps8(benchmark::State& state) {
+  Box2DV3Scene scene(pyramid(int(state.range(0))), false, 1, 8);
+  run(state, scene, kPyramid);
+}
 const bool registered_box2d = [] {
   add("Pyramid2D_Box2Dv3", Pyramid2D_Box2Dv3, kPyramid.timed, {20, 40, 100});
+  add_rows("Pyramid2D_Box2Dv3_substeps8", Pyramid2D_Box2Dv3_substeps8);
   return true;
 }();
 #endif

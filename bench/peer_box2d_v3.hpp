@@ -16,7 +16,7 @@ namespace wedge::bench {
 
 class Box2DV3Scene {
  public:
-  Box2DV3Scene(const World<2>& layout, bool sleep, int workers = 1) {
+  Box2DV3Scene(const World<2>& layout, bool sleep, int workers = 1, int substeps = 4) : substeps_(substeps) {
     b2WorldDef def = b2DefaultWorldDef();
     def.workerCount = workers;
     def.gravity = b2Vec2{0.0f, float(-kGravity)};
@@ -48,7 +48,7 @@ class Box2DV3Scene {
   Box2DV3Scene(const Box2DV3Scene&) = delete;
   Box2DV3Scene& operator=(const Box2DV3Scene&) = delete;
 
-  void step() { b2World_Step(world_, float(kDt), 4); }  // (4 substeps: Box2D v3's recommended default)
+  void step() { b2World_Step(world_, float(kDt), substeps_); }  // (4 substeps: Box2D v3's recommended default)
   double max_speed() const {
     double v = 0.0;
     for (const b2BodyId id : boxes_) v = std::max(v, double(b2Length(b2Body_GetLinearVelocity(id))));
@@ -63,6 +63,7 @@ class Box2DV3Scene {
   std::size_t count() const { return boxes_.size(); }
 
  private:
+  int substeps_;
   b2WorldId world_;
   std::vector<b2BodyId> boxes_;  // in Wedge's body order (ground excluded)
 };
