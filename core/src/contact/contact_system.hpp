@@ -98,8 +98,7 @@ struct SolverBody {
 // accumulated impulses of the current stage.
 template <int N>
 struct PointConstraint {
-  // What the soft step's normal passes read, first and together (a 4D point is about 1 KB: the passes
-  // are bound by memory).
+  // What the soft step's normal passes read, first and together (a 4D point is 624 B).
   double separation = 0.0;       // m, soft step: the separation after the last position update
   double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
   double normal_impulse = 0.0;   // N s, accumulated in the current stage
@@ -389,8 +388,8 @@ inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const SolverBody<
   return b.inv_inertia * t;
 }
 // The change of the body's angular velocity per impulse j at lever arm r: I^-1 (r ^ j). (Formed here
-// rather than kept per point as the matrix I^-1 [r]_*, which was 40% of a 4D point's bytes: the passes
-// over the points are bound by memory, not arithmetic.)
+// rather than kept per point as the matrix I^-1 [r]_*, which was 40% of a 4D point's bytes; for an
+// isotropic body it is a scale.)
 template <int N>
 inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const SolverBody<N>& b, const Vec<N>& r, const Vec<N>& j) {
   return inverse_inertia_times(b, outer<N>(r, j).c);
