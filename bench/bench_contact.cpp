@@ -4,6 +4,7 @@
 //   Pile4D_Wedge/<count>/sleep_{off,on}      100, 1,000 and 10,000 tesseracts dropped likewise (4D)
 //   Pile4D_Wedge/1000/settled                the 1,000 pile with sleeping on after 30 s, once settled
 //   PaperScene/<name>                        the paper's figure scenes, scenes/fig*_4d.json
+//   Workers_HandOver                         one empty job handed to a second thread and back (wall time)
 // One benchmark iteration is one step, so the time per iteration is the CPU time of one World::step (or
 // one b2World::Step, one btDiscreteDynamicsWorld::stepSimulation). Each scene first runs a warm-up that
 // is not timed (the same number of steps in both engines), then exactly the timed steps (fixed
@@ -21,6 +22,7 @@
 //   max_pen  m, deepest penetration of any contact point after the timed steps
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -28,6 +30,7 @@
 #include <utility>
 
 #include "contact_scenes.hpp"
+#include "parallel/workers.hpp"
 #include "scene_json.hpp"
 
 namespace {
@@ -267,6 +270,22 @@ BENCHMARK_CAPTURE(PaperScene, fig3_dominoes_4d, "fig3_dominoes_4d")
 BENCHMARK_CAPTURE(PaperScene, fig4_spinning_4d, "fig4_spinning_4d")
     ->Iterations(kSceneTimed)
     ->Unit(benchmark::kMillisecond);
+
+// What every loop a step splits over two threads pays beyond its work: the job handed to the helper
+// (parallel::Workers bumps an epoch the helper spins on) and back (the helper counts itself done), each
+// part writing one flag of its own. Two cache lines cross between the cores each way, so this follows
+// the round trip of a cache line between them (bench/README.md, "the slow two-worker mode").
+void Workers_HandOver(benchmark::State& state) {
+  parallel::Workers workers(2);
+  struct alignas(64) Flag {
+    std::atomic<int> value{0};
+  };
+  Flag flags[2];
+  for (auto _ : state)
+    workers.for_parts(2, [&](int part, int) { flags[part].value.fetch_add(1, std::memory_order_relaxed); });
+  if (flags[0].value.load() != flags[1].value.load()) state.SkipWithError("a part was not run");
+}
+BENCHMARK(Workers_HandOver)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
