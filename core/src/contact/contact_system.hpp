@@ -23,6 +23,7 @@
 #include "wedge/collision/broadphase.hpp"
 #include "wedge/contact.hpp"
 #include "wedge/grab.hpp"
+#include "contact/wide.hpp"
 #include "parallel/workers.hpp"
 
 namespace wedge::contact {
@@ -194,6 +195,11 @@ struct ContactState {
   // for the paper's solver, whose constraints are in pair order).
   std::vector<int> colour_start;
   std::vector<PointConstraint<N>> points;
+  // Soft step: the constraints in lanes (wide.hpp), colour by colour; wide_start as colour_start.
+  std::vector<WideConstraint<N>> wide;
+  std::vector<WidePoint<N>> wide_points;
+  std::vector<WideInertia<N>> wide_inertia;
+  std::vector<int> wide_start, wide_scratch;
   double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
   std::vector<int> shock_order;  // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
@@ -291,30 +297,6 @@ void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
   });
 }
 
-// For passes that change the bodies' velocities point by point: one(c) per constraint in solver order,
-// except that consecutive constraints of one colour go two at a time to two(c, d). A point's update
-// reads the velocities the last one wrote, a chain of dependent arithmetic; two constraints of a colour
-// share no moving body, so their chains are independent, and taken point by point in turn (points_in_turn)
-// the processor overlaps them: each does exactly what it would alone, so the results are bit-identical.
-template <int N, class One, class Two>
-void for_each_constraint_in_pairs(ContactState<N>& s, One&& one, Two&& two) {
-  for_each_constraint_run(s, [&](int begin, int end, bool independent) {
-    int k = begin;
-    if (independent)
-      for (; k + 1 < end; k += 2) two(s.constraints[k], s.constraints[k + 1]);
-    for (; k < end; ++k) one(s.constraints[k]);
-  });
-}
-// fn(c, k) and fn(d, k) in turn for every point k of two independent constraints.
-template <int N, class F>
-inline void points_in_turn(const Constraint<N>& c, const Constraint<N>& d, F&& fn) {
-  const int m = std::max(c.count, d.count);
-  for (int k = 0; k < m; ++k) {
-    if (k < c.count) fn(c, k);
-    if (k < d.count) fn(d, k);
-  }
-}
-
 template <int N>
 using Shapes = std::vector<std::shared_ptr<const Shape<N>>>;
 
@@ -361,6 +343,11 @@ template <int N>
 void track_substep_motion(ContactState<N>& state, const std::vector<Body<N>>& bodies);
 template <int N>
 void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings);
+// The step's colour-ordered constraints into lanes (wide.hpp), once their points are prepared: within a
+// colour by point count, most first, kLanes to a wide constraint; the uncoloured group one to a wide
+// constraint, in order. Run by prepare_soft_step.
+template <int N>
+void pack_wide(ContactState<N>& state);
 // islands.cpp
 template <int N>
 void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);

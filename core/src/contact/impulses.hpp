@@ -33,22 +33,23 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
 // lambda >= 0 where |j(lambda)| = limit: Newton on 1/|j(lambda)| - 1/limit, which is concave and
 // increasing, converges from lambda = 0 monotonically (the trust-region secular equation).
 template <int N>
-[[gnu::noinline]] Vec<N> project_to_cone(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& unconstrained, double limit) {
+[[gnu::noinline]] Vec<N> project_to_cone(const Mat<N>& tangent_mass, const Vec<N>& n, const Vec<N>& unconstrained,
+                                         double limit) {
   const double norm0 = unconstrained.norm();
   if (limit <= 0.0) return Vec<N>::Zero();
   Vec<N> j = unconstrained * (limit / norm0);  // (the radial answer: exact when M is isotropic)
-  if (p.tangent_mass.isZero(0.0)) return j;
+  if (tangent_mass.isZero(0.0)) return j;
   double lambda = 0.0;
   for (int it = 0; it < 50; ++it) {
     // x = (1 + lambda T)^-1 j* and dx = d x / d lambda = -(1 + lambda T)^-1 T x; at lambda = 0 (the first
     // round) the matrix is the identity, so no factorisation is needed.
     Vec<N> x = unconstrained, dx;
     if (lambda > 0.0) {
-      const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * p.tangent_mass);
+      const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * tangent_mass);
       x = llt.solve(unconstrained);
-      dx = -llt.solve(p.tangent_mass * x);
+      dx = -llt.solve(tangent_mass * x);
     } else {
-      dx = -(p.tangent_mass * x);
+      dx = -(tangent_mass * x);
     }
     const double len = x.norm();
     if (!(len > 0.0)) break;
@@ -83,7 +84,7 @@ template <int N>
     // Once the slip has turned against its first direction, that impulse would push it on and do
     // work: such a point is clamped like a sticking one (in heaps it had kept boxes jittering).
     const bool forward = p.sliding && slip.dot(p.slip_direction) > 0.0;
-    next = forward ? Vec<N>(p.slip_direction * -limit) : project_to_cone(p, n, next, limit);
+    next = forward ? Vec<N>(p.slip_direction * -limit) : project_to_cone(p.tangent_mass, n, next, limit);
   }
   return next;
 }

@@ -19,6 +19,7 @@
 // and the relax pass removes the push's velocity, so a stack is not thrown up by its own correction;
 // the warm-started impulses of the last sub-step carry the load from one sub-step to the next.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "contact/impulses.hpp"
@@ -39,6 +40,318 @@ Softness make_soft(double hertz, double zeta, double h) {
   return {omega / a1, a2 * a3, a3};
 }
 
+using ga::detail::apply_terms;
+template <int N>
+using LeftContraction = ga::Terms<N, ga::Set::Vector, ga::Set::Bivector, ga::Set::Vector, ga::Product::LeftContraction>;
+template <int N>
+using Outer = ga::Terms<N, ga::Set::Vector, ga::Set::Vector, ga::Set::Bivector, ga::Product::Outer>;
+
+template <class W>
+[[gnu::always_inline]] inline W splat(double x) {
+  return make_wide<W>([x](int) { return x; });
+}
+template <class W>
+[[gnu::always_inline]] inline W wide_max(const W& x, const W& y) {  // std::max per lane
+  return select(x < y, y, x);
+}
+template <int K, class W>
+[[gnu::always_inline]] inline W wide_dot(const W* x, const W* y) {
+  W sum = x[0] * y[0];
+  for (int i = 1; i < K; ++i) sum += x[i] * y[i];
+  return sum;
+}
+
+// The two bodies' velocities of a wide constraint, lane by lane.
+template <int N>
+struct WideVelocities {
+  static constexpr int K = kBiv<N>;
+  Wide<N> va[N], wa[K], vb[N], wb[K];
+
+  void gather(const std::vector<SolverBody<N>>& bodies, const WideConstraint<N>& c) {
+    static const SolverBody<N> none{};
+    const SolverBody<N>* a[kLanes<N>];
+    const SolverBody<N>* b[kLanes<N>];
+    for (int l = 0; l < kLanes<N>; ++l) {
+      a[l] = c.a[l] >= 0 ? &bodies[c.a[l]] : &none;
+      b[l] = c.b[l] >= 0 ? &bodies[c.b[l]] : &none;
+    }
+    for (int i = 0; i < N; ++i) {
+      va[i] = make_wide<Wide<N>>([&](int l) { return a[l]->v[i]; });
+      vb[i] = make_wide<Wide<N>>([&](int l) { return b[l]->v[i]; });
+    }
+    for (int i = 0; i < K; ++i) {
+      wa[i] = make_wide<Wide<N>>([&](int l) { return a[l]->w.c[i]; });
+      wb[i] = make_wide<Wide<N>>([&](int l) { return b[l]->w.c[i]; });
+    }
+  }
+  // Writes back the lanes whose bodies move.
+  void scatter(std::vector<SolverBody<N>>& bodies, const WideConstraint<N>& c) const {
+    for (int l = 0; l < kLanes<N>; ++l) {
+      if (c.move_a >> l & 1u) put(bodies[c.a[l]], va, wa, l);
+      if (c.move_b >> l & 1u) put(bodies[c.b[l]], vb, wb, l);
+    }
+  }
+  static void put(SolverBody<N>& body, const Wide<N>* v, const Wide<N>* w, int l) {
+    for (int i = 0; i < N; ++i) body.v[i] = v[i][l];
+    for (int i = 0; i < K; ++i) body.w.c[i] = w[i][l];
+  }
+};
+
+// The impulse j at the points' lever arms ra, rb to the lanes' velocities (apply_impulse).
+template <int N>
+inline void apply_wide_impulse(const WideConstraint<N>& c, const WideInertia<N>* inertia, const Wide<N>* ra,
+                               const Wide<N>* rb, const Wide<N>* j, WideVelocities<N>& v) {
+  constexpr int K = kBiv<N>;
+  Wide<N> ta[K] = {}, tb[K] = {};
+  apply_terms<Outer<N>::table>(ra, j, ta, std::make_index_sequence<Outer<N>::table.size()>{});
+  apply_terms<Outer<N>::table>(rb, j, tb, std::make_index_sequence<Outer<N>::table.size()>{});
+  for (int i = 0; i < N; ++i) {
+    v.va[i] -= c.inv_mass_a * j[i];
+    v.vb[i] += c.inv_mass_b * j[i];
+  }
+  if (!inertia) {
+    for (int i = 0; i < K; ++i) {
+      v.wa[i] -= c.iso_a * ta[i];
+      v.wb[i] += c.iso_b * tb[i];
+    }
+    return;
+  }
+  for (int i = 0; i < K; ++i) {
+    Wide<N> da = inertia->a[i] * ta[0], db = inertia->b[i] * tb[0];
+    for (int k = 1; k < K; ++k) {
+      da += inertia->a[k * K + i] * ta[k];
+      db += inertia->b[k * K + i] * tb[k];
+    }
+    v.wa[i] -= da;
+    v.wb[i] += db;
+  }
+}
+
+// Friction outside the cone, lane by lane (friction_update's slow branch): kinetic friction against the
+// slip the point had when the step began, or the cone's nearest impulse in the tangent mass's metric.
+template <int N>
+[[gnu::noinline]] void clamp_to_cones(const WideConstraint<N>& c, const WidePoint<N>& p, const Wide<N>* slip, Wide<N>* next,
+                                      Wide<N> limit, WideMask<N> outside) {
+  for (int l = 0; l < kLanes<N>; ++l) {
+    if (!outside[l]) continue;
+    Vec<N> n, sl, nx, dir;
+    Mat<N> tm;
+    for (int i = 0; i < N; ++i) {
+      n[i] = c.normal[i][l];
+      sl[i] = slip[i][l];
+      nx[i] = next[i][l];
+      dir[i] = p.slip_direction[i][l];
+    }
+    for (int i = 0; i < N * N; ++i) tm.data()[i] = p.tangent_mass[i][l];
+    const bool forward = p.sliding[l] > 0.0 && sl.dot(dir) > 0.0;
+    const Vec<N> j = forward ? Vec<N>(dir * -limit[l]) : project_to_cone(tm, n, nx, limit[l]);
+    for (int i = 0; i < N; ++i) next[i].set(l, j[i]);
+  }
+}
+
+// One pass over a wide constraint: the normal impulses first (soft when use_bias and penetrating),
+// then friction in the cone of the updated normal impulse, kLanes<N> constraints at once.
+template <int N>
+struct WidePass {
+  static constexpr int K = kBiv<N>;
+  double inv_h, push_speed, bias_scale, mass_scale, impulse_scale;
+  bool use_bias;
+
+  [[gnu::always_inline]] void normal(const WideConstraint<N>& c, WidePoint<N>& p, WideVelocities<N>& v) const {
+    const Wide<N> sep = p.separation;
+    const WideMask<N> apart = sep > 0.0;  // speculative: may close the gap within the sub-step, no more
+    Wide<N> bias = sep * inv_h, ms = splat<Wide<N>>(1.0), is = splat<Wide<N>>(0.0);
+    if (use_bias) {
+      bias = select(apart, bias, wide_max(bias_scale * sep, splat<Wide<N>>(-push_speed)));
+      ms = select(apart, ms, splat<Wide<N>>(mass_scale));
+      is = select(apart, is, splat<Wide<N>>(impulse_scale));
+    } else {
+      bias = select(apart, bias, splat<Wide<N>>(0.0));
+    }
+    Wide<N> du[N];
+    for (int i = 0; i < N; ++i) du[i] = v.vb[i] - v.va[i];
+    const Wide<N> un = wide_dot<N>(c.normal, du) + wide_dot<K>(p.jn_b, v.wb) - wide_dot<K>(p.jn_a, v.wa);
+    const Wide<N> next = wide_max(p.normal_impulse - p.normal_mass * (ms * un + bias) - is * p.normal_impulse, splat<Wide<N>>(0.0));
+    const Wide<N> change = next - p.normal_impulse;
+    p.normal_impulse = next;
+    p.normal_total += change;
+    const Wide<N> ca = c.inv_mass_a * change, cb = c.inv_mass_b * change;
+    for (int i = 0; i < N; ++i) {
+      v.va[i] -= ca * c.normal[i];
+      v.vb[i] += cb * c.normal[i];
+    }
+    for (int i = 0; i < K; ++i) {
+      v.wa[i] -= change * p.dn_a[i];
+      v.wb[i] += change * p.dn_b[i];
+    }
+  }
+
+  [[gnu::always_inline]] void friction(const WideConstraint<N>& c, const WideInertia<N>* inertia, WidePoint<N>& p,
+                WideVelocities<N>& v) const {
+    WideMask<N> held = p.normal_impulse > 0.0;
+    for (int i = 0; i < N; ++i) held |= p.tangent_impulse[i] != 0.0;
+    const WideMask<N> active = (p.friction > 0.0) & held;
+    if (!any(active)) return;
+    Wide<N> ca[N] = {}, cb[N] = {};  // r . w
+    apply_terms<LeftContraction<N>::table>(p.ra, v.wa, ca, std::make_index_sequence<LeftContraction<N>::table.size()>{});
+    apply_terms<LeftContraction<N>::table>(p.rb, v.wb, cb, std::make_index_sequence<LeftContraction<N>::table.size()>{});
+    Wide<N> u[N], slip[N], next[N];
+    for (int i = 0; i < N; ++i) u[i] = ((v.vb[i] + cb[i]) - v.va[i]) - ca[i];
+    const Wide<N> un = wide_dot<N>(c.normal, u);
+    for (int i = 0; i < N; ++i) slip[i] = u[i] - un * c.normal[i];
+    for (int i = 0; i < N; ++i) {
+      Wide<N> t = p.tangent_mass[i] * slip[0];
+      for (int k = 1; k < N; ++k) t += p.tangent_mass[k * N + i] * slip[k];
+      next[i] = p.tangent_impulse[i] - t;
+    }
+    const Wide<N> limit = p.friction * p.normal_impulse;
+    const WideMask<N> outside = active & (wide_dot<N>(next, next) > limit * limit);
+    if (any(outside)) clamp_to_cones(c, p, slip, next, limit, outside);
+    Wide<N> change[N];
+    for (int i = 0; i < N; ++i) {
+      next[i] = select(active, next[i], p.tangent_impulse[i]);
+      change[i] = next[i] - p.tangent_impulse[i];
+      p.tangent_impulse[i] = next[i];
+    }
+    apply_wide_impulse(c, inertia, p.ra, p.rb, change, v);
+  }
+
+  void operator()(ContactState<N>& s, const WideConstraint<N>& c) const {
+    WideVelocities<N> v;
+    v.gather(s.solver_bodies, c);
+    WidePoint<N>* points = s.wide_points.data() + c.first;
+    const WideInertia<N>* inertia = c.inertia >= 0 ? &s.wide_inertia[c.inertia] : nullptr;
+    for (int k = 0; k < c.count; ++k) normal(c, points[k], v);
+    for (int k = 0; k < c.count; ++k) friction(c, inertia, points[k], v);
+    v.scatter(s.solver_bodies, c);
+  }
+};
+
+// fn(wide constraint) in solver order: colour by colour, each colour split over the workers in equal
+// shares of its slots, then the uncoloured group (one constraint per wide constraint) on this thread.
+template <int N, class F>
+void for_each_wide(ContactState<N>& s, F&& fn) {
+  const int groups = int(s.wide_start.size()) - 1;
+  for (int g = 0; g < groups; ++g) {
+    const int first = s.wide_start[g], last = s.wide_start[g + 1];
+    if (first == last) continue;
+    const int begin_slot = s.wide[first].first, end_slot = s.wide[last - 1].first + s.wide[last - 1].count;
+    const int parts = g + 1 < groups ? std::min(s.workers.count(), (end_slot - begin_slot) * kLanes<N> / kPointGrain) : 1;
+    if (parts <= 1) {
+      for (int k = first; k < last; ++k) fn(s.wide[k]);
+      continue;
+    }
+    s.workers.for_parts(parts, [&](int part, int of) {
+      const auto cut = [&](int i) {
+        if (i == of) return last;
+        const int target = begin_slot + int(std::int64_t(end_slot - begin_slot) * i / of);
+        return int(std::lower_bound(s.wide.begin() + first, s.wide.begin() + last, target,
+                                    [](const WideConstraint<N>& c, int t) { return c.first < t; }) -
+                   s.wide.begin());
+      };
+      for (int k = cut(part); k < cut(part + 1); ++k) fn(s.wide[k]);
+    });
+  }
+}
+
+// Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
+template <int N>
+void warm_start_substep(ContactState<N>& s) {
+  for_each_wide(s, [&](const WideConstraint<N>& c) {
+    WideVelocities<N> v;
+    v.gather(s.solver_bodies, c);
+    const WideInertia<N>* inertia = c.inertia >= 0 ? &s.wide_inertia[c.inertia] : nullptr;
+    for (int k = 0; k < c.count; ++k) {
+      WidePoint<N>& p = s.wide_points[c.first + k];
+      p.normal_total += p.normal_impulse;
+      Wide<N> j[N];
+      for (int i = 0; i < N; ++i) j[i] = p.normal_impulse * c.normal[i] + p.tangent_impulse[i];
+      apply_wide_impulse(c, inertia, p.ra, p.rb, j, v);
+    }
+    v.scatter(s.solver_bodies, c);
+  });
+}
+
+template <int N>
+void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
+  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
+                         s.soft_mass_scale, s.soft_impulse_scale,        use_bias};
+  for_each_wide(s, [&](const WideConstraint<N>& c) { pass(s, c); });
+}
+
+template <int N>
+void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
+  constexpr int K = kBiv<N>;
+  const Constraint<N>* c[kLanes<N>];
+  const SolverBody<N>* a[kLanes<N>];
+  const SolverBody<N>* b[kLanes<N>];
+  for (int l = 0; l < kLanes<N>; ++l) {
+    c[l] = w.constraint[l] >= 0 ? &s.constraints[w.constraint[l]] : nullptr;
+    a[l] = c[l] && (w.move_a >> l & 1u) ? &s.solver_bodies[w.a[l]] : nullptr;
+    b[l] = c[l] && (w.move_b >> l & 1u) ? &s.solver_bodies[w.b[l]] : nullptr;
+  }
+  for (int i = 0; i < N; ++i) w.normal[i] = make_wide<Wide<N>>([&](int l) { return c[l] ? c[l]->normal[i] : 0.0; });
+  w.inv_mass_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_mass : 0.0; });
+  w.inv_mass_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_mass : 0.0; });
+  w.iso_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->iso_inv_inertia : 0.0; });
+  w.iso_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->iso_inv_inertia : 0.0; });
+  if (w.inertia >= 0) {
+    WideInertia<N>& m = s.wide_inertia[w.inertia];
+    for (int i = 0; i < K * K; ++i) {
+      m.a[i] = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_inertia.data()[i] : 0.0; });
+      m.b[i] = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_inertia.data()[i] : 0.0; });
+    }
+  }
+  for (int k = 0; k < w.count; ++k) {
+    const PointConstraint<N>* p[kLanes<N>];
+    for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : nullptr;
+    const auto lanes = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return p[l] ? field(*p[l]) : 0.0; }); };
+    WidePoint<N>& q = s.wide_points[w.first + k];
+    q.separation = lanes([](const PointConstraint<N>& x) { return x.separation; });
+    q.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });
+    q.normal_mass = lanes([](const PointConstraint<N>& x) { return x.normal_mass; });
+    q.normal_impulse = lanes([](const PointConstraint<N>& x) { return x.normal_impulse; });
+    q.normal_total = lanes([](const PointConstraint<N>& x) { return x.normal_total; });
+    q.friction = lanes([](const PointConstraint<N>& x) { return x.friction; });
+    q.sliding = lanes([](const PointConstraint<N>& x) { return x.sliding ? 1.0 : 0.0; });
+    for (int i = 0; i < K; ++i) {
+      q.jn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_a[i]; });
+      q.jn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_b[i]; });
+      q.dn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.dn_a[i]; });
+      q.dn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.dn_b[i]; });
+    }
+    for (int i = 0; i < N; ++i) {
+      q.tangent_impulse[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_impulse[i]; });
+      q.slip_direction[i] = lanes([i](const PointConstraint<N>& x) { return x.slip_direction[i]; });
+      q.ra[i] = lanes([i](const PointConstraint<N>& x) { return x.ra[i]; });
+      q.rb[i] = lanes([i](const PointConstraint<N>& x) { return x.rb[i]; });
+    }
+    for (int i = 0; i < N * N; ++i)
+      q.tangent_mass[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_mass.data()[i]; });
+  }
+}
+
+// The lanes' accumulated impulses back to the points (events, restitution, the next step's warm start).
+template <int N>
+void unpack_wide(ContactState<N>& s) {
+  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const WideConstraint<N>& w = s.wide[i];
+      for (int l = 0; l < kLanes<N>; ++l) {
+        if (w.constraint[l] < 0) continue;
+        const Constraint<N>& c = s.constraints[w.constraint[l]];
+        for (int k = 0; k < c.count; ++k) {
+          const WidePoint<N>& q = s.wide_points[w.first + k];
+          PointConstraint<N>& p = s.points[c.first + k];
+          p.normal_impulse = q.normal_impulse[l];
+          p.normal_total = q.normal_total[l];
+          for (int j = 0; j < N; ++j) p.tangent_impulse[j] = q.tangent_impulse[j][l];
+        }
+      }
+    }
+  });
+}
+
 // An impulse of `change` along the normal at the point (apply_impulse through the normal's rows).
 template <int N>
 void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& n,
@@ -51,81 +364,6 @@ void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstra
     b.v += (b.inv_mass * change) * n;
     b.w.c += change * p.dn_b;
   }
-}
-
-// Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
-template <int N>
-void warm_start_substep(ContactState<N>& s) {
-  const auto apply = [&](const Constraint<N>& c, int k) {
-    s.points[c.first + k].normal_total += s.points[c.first + k].normal_impulse;
-    apply_accumulated_point(s, c, k);
-  };
-  for_each_constraint_in_pairs(
-      s, [&](const Constraint<N>& c) { for (int k = 0; k < c.count; ++k) apply(c, k); },
-      [&](const Constraint<N>& c, const Constraint<N>& d) { points_in_turn(c, d, apply); });
-}
-
-// One pass over the contacts: per constraint the normal impulses first (soft when use_bias and
-// penetrating), then friction in the cone of the updated normal impulse.
-template <int N>
-struct ContactPass {
-  ContactState<N>& s;
-  double inv_h, push_speed;
-  bool use_bias;
-
-  void normal(const Constraint<N>& c, int k) const {
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    const Vec<N>& n = c.normal;
-    PointConstraint<N>& p = s.points[c.first + k];
-    const double sep = p.separation;
-    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-    if (sep > 0.0) {
-      bias = sep * inv_h;  // speculative: may close the gap within the sub-step, no more
-    } else if (use_bias) {
-      bias = std::max(s.soft_mass_scale * s.soft_bias_rate * sep, -push_speed);
-      mass_scale = s.soft_mass_scale;
-      impulse_scale = s.soft_impulse_scale;
-    }
-    const double un = n.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
-    const double next =
-        std::max(p.normal_impulse - p.normal_mass * (mass_scale * un + bias) - impulse_scale * p.normal_impulse, 0.0);
-    const double change = next - p.normal_impulse;
-    p.normal_impulse = next;
-    p.normal_total += change;
-    apply_normal_impulse(a, b, p, n, change);
-  }
-
-  void friction(const Constraint<N>& c, int k) const {
-    PointConstraint<N>& p = s.points[c.first + k];
-    if (!(p.friction > 0.0) || (p.normal_impulse <= 0.0 && p.tangent_impulse.isZero(0.0))) return;
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    const Vec<N>& n = c.normal;
-    const Vec<N> u = relative_velocity(a, b, p);
-    const Vec<N> next = friction_update(p, n, Vec<N>(u - n.dot(u) * n));
-    const Vec<N> change = next - p.tangent_impulse;
-    p.tangent_impulse = next;
-    apply_impulse(a, b, p, change);
-  }
-
-  void one(const Constraint<N>& c) const {
-    for (int k = 0; k < c.count; ++k) normal(c, k);
-    for (int k = 0; k < c.count; ++k) friction(c, k);
-  }
-  // Two constraints of one colour in turn (for_each_constraint_in_pairs).
-  void two(const Constraint<N>& c, const Constraint<N>& d) const {
-    points_in_turn(c, d, [this](const Constraint<N>& e, int k) { normal(e, k); });
-    points_in_turn(c, d, [this](const Constraint<N>& e, int k) { friction(e, k); });
-  }
-};
-
-template <int N>
-void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
-  const ContactPass<N> pass{s, 1.0 / h, settings.contact_push_speed, use_bias};
-  for_each_constraint_in_pairs(
-      s, [&](const Constraint<N>& c) { pass.one(c); },
-      [&](const Constraint<N>& c, const Constraint<N>& d) { pass.two(c, d); });
 }
 
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
@@ -162,6 +400,59 @@ Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
 
 }  // namespace
 
+// Packs the colour-ordered constraints into lanes: within a colour by point count, most first (so the
+// lanes of a wide constraint are filled alike), kLanes<N> to a wide constraint; the uncoloured group,
+// whose constraints may share bodies, one to a wide constraint in order.
+template <int N>
+void pack_wide(ContactState<N>& s) {
+  s.wide.clear();
+  s.wide_inertia.clear();
+  s.wide_start.clear();
+  const int groups = int(s.colour_start.size()) - 1;
+  int slots = 0;
+  for (int g = 0; g < groups; ++g) {
+    s.wide_start.push_back(int(s.wide.size()));
+    const int first = s.colour_start[g], last = s.colour_start[g + 1];
+    const int lanes = g + 1 < groups ? kLanes<N> : 1;
+    // (A counting sort, stable: most points first, in colour order among equals; no allocation.)
+    std::vector<int>& order = s.wide_scratch;
+    order.resize(last - first);
+    std::array<int, kMaxManifoldPoints<N> + 2> at{};
+    constexpr int kMost = kMaxManifoldPoints<N>;
+    for (int k = first; k < last; ++k) ++at[kMost - s.constraints[k].count + 1];
+    for (int i = 1; i < kMost + 2; ++i) at[i] += at[i - 1];
+    for (int k = first; k < last; ++k) order[at[lanes > 1 ? kMost - s.constraints[k].count : 0]++] = k;
+    for (int i = 0; i < int(order.size()); i += lanes) {
+      WideConstraint<N> w;
+      w.first = slots;
+      for (int l = 0; l < kLanes<N>; ++l) {
+        const int k = l < lanes && i + l < int(order.size()) ? order[i + l] : -1;
+        w.constraint[l] = k;
+        w.a[l] = k >= 0 ? s.constraints[k].a : -1;
+        w.b[l] = k >= 0 ? s.constraints[k].b : -1;
+        if (k >= 0) w.count = std::max(w.count, s.constraints[k].count);
+        if (k >= 0 && !s.solver_bodies[w.a[l]].frozen) w.move_a |= 1u << l;
+        if (k >= 0 && !s.solver_bodies[w.b[l]].frozen) w.move_b |= 1u << l;
+        if (((w.move_a >> l & 1u) && !s.solver_bodies[w.a[l]].isotropic) ||
+            ((w.move_b >> l & 1u) && !s.solver_bodies[w.b[l]].isotropic))
+          w.inertia = 0;
+      }
+      if (w.inertia >= 0) {
+        w.inertia = int(s.wide_inertia.size());
+        s.wide_inertia.emplace_back();
+      }
+      slots += w.count;
+      s.wide.push_back(w);
+    }
+  }
+  s.wide_start.push_back(int(s.wide.size()));
+  s.wide_points.resize(slots);
+  // The lanes' data, every wide constraint on its own.
+  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) fill_wide(s, s.wide[i]);
+  });
+}
+
 template <int N>
 void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h) {
@@ -191,6 +482,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       p.normal_total = 0.0;
     }
   });
+  pack_wide(s);
 }
 
 template <int N>
@@ -222,14 +514,35 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
     sb.dq = to_matrix(bodies[i].rotor) * sb.r0_inverse;
   });
   // s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra: the turned normal once per pair.
-  for_each_constraint(s, [&](const Constraint<N>& c) {
-    const SolverBody<N>& a = s.solver_bodies[c.a];
-    const SolverBody<N>& b = s.solver_bodies[c.b];
-    const double moved = c.normal.dot(b.dp - a.dp);
-    const Vec<N> na = transpose_times(a.dq, c.normal), nb = transpose_times(b.dq, c.normal);
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      p.separation = p.base_separation + moved + nb.dot(p.rb) - na.dot(p.ra);
+  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const WideConstraint<N>& w = s.wide[i];
+      double moved[kLanes<N>];
+      Vec<N> na[kLanes<N>], nb[kLanes<N>];
+      for (int l = 0; l < kLanes<N>; ++l) {
+        if (w.constraint[l] < 0) {
+          moved[l] = 0.0;
+          na[l].setZero();
+          nb[l].setZero();
+          continue;
+        }
+        const Constraint<N>& c = s.constraints[w.constraint[l]];
+        const SolverBody<N>& a = s.solver_bodies[c.a];
+        const SolverBody<N>& b = s.solver_bodies[c.b];
+        moved[l] = c.normal.dot(b.dp - a.dp);
+        na[l] = transpose_times(a.dq, c.normal);
+        nb[l] = transpose_times(b.dq, c.normal);
+      }
+      const Wide<N> m = make_wide<Wide<N>>([&](int l) { return moved[l]; });
+      Wide<N> wa[N], wb[N];
+      for (int j = 0; j < N; ++j) {
+        wa[j] = make_wide<Wide<N>>([&](int l) { return na[l][j]; });
+        wb[j] = make_wide<Wide<N>>([&](int l) { return nb[l][j]; });
+      }
+      for (int k = w.first; k < w.first + w.count; ++k) {
+        WidePoint<N>& p = s.wide_points[k];
+        p.separation = p.base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
+      }
     }
   });
 }
@@ -237,6 +550,7 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
 template <int N>
 void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings) {
   if (s.constraints.empty()) return;
+  unpack_wide(s);
   load_velocities(s, bodies);
   apply_restitution(s, settings);
   keep_for_warm_start(s);
@@ -247,7 +561,8 @@ void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
-  template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);
+  template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);       \
+  template void pack_wide<N>(ContactState<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 

@@ -24,10 +24,11 @@ inline auto coeff_data(X& x) {
 }
 
 // One expression per term on raw arrays: no template is instantiated and no overload resolved per term
-// (the per-term function templates this replaced made GA-heavy files take minutes to compile).
-template <const auto& T, std::size_t... I>
-inline void apply_terms(const double* __restrict a, const double* __restrict b, double* __restrict o,
-                        std::index_sequence<I...>) {
+// (the per-term function templates this replaced made GA-heavy files take minutes to compile). X is
+// double, or a vector of doubles for the contact solver's lanes (one independent product per lane).
+template <const auto& T, class X, std::size_t... I>
+inline void apply_terms([[maybe_unused]] const X* __restrict a, [[maybe_unused]] const X* __restrict b,
+                        [[maybe_unused]] X* __restrict o, std::index_sequence<I...>) {
   constexpr const Term* t = T.data();  // built-in subscripts: std::array's operator[] is an overload set
   ((t[I].sign > 0 ? o[t[I].out] += a[t[I].a] * b[t[I].b] : o[t[I].out] -= a[t[I].a] * b[t[I].b]), ...);
 }

@@ -1,0 +1,159 @@
+// The soft step's constraints in lanes (Box2D v3's wide constraints, in double precision, any n).
+//
+// Each colour's constraints are packed kLanes at a time into a WideConstraint: lane l holds the l-th
+// constraint's normal and bodies, and slot k of its points (a WidePoint) holds every lane's k-th point,
+// field by field, so one vector instruction updates kLanes contact points. The constraints of a colour
+// share no moving body, so the lanes are independent; a lane without a constraint, or past its
+// constraint's last point, has no mass and takes no impulse. Velocities are gathered into lanes once
+// per constraint and pass, and written back once.
+//
+// Wide is GCC's generic vector (also Clang's): the compiler uses the widest registers the build allows
+// (two SSE2 registers per Wide on baseline x86-64) and every lane is plain IEEE double arithmetic, so the
+// results do not depend on the instruction set. The lanes a constraint goes to are fixed by the colour
+// order alone, so the results do not depend on the worker count either.
+#pragma once
+
+#include <cstdint>
+
+#include "wedge/ga/types.hpp"
+
+namespace wedge::contact {
+
+// Lanes come in packs of two doubles (one SSE2 register); a Wide is P of them. Two packs give the
+// processor twice the independent chains per instruction (GCC's own 32-byte vectors, lowered to SSE2,
+// went through memory lane by lane and stalled on the store buffer); from 4D on, two packs of a
+// body's velocities no longer fit the registers and one is faster (kPacks).
+// Every operation is forced inline: one left as a call passes its packs through memory.
+#define WEDGE_WIDE_INLINE [[gnu::always_inline]] inline
+
+using Pack = double __attribute__((vector_size(16)));
+using PackMask = std::int64_t __attribute__((vector_size(16)));  // a comparison's lanes: -1 or 0
+
+template <int P>
+struct WideT {
+  Pack p[P];
+  WEDGE_WIDE_INLINE double operator[](int l) const { return p[l / 2][l % 2]; }
+  void set(int l, double x) { p[l / 2][l % 2] = x; }
+};
+template <int P>
+struct WideMaskT {
+  PackMask p[P];
+  WEDGE_WIDE_INLINE bool operator[](int l) const { return p[l / 2][l % 2] != 0; }
+};
+
+// Lane-wise arithmetic, with doubles taken as every lane's value.
+#define WEDGE_WIDE_OP(OP)                                                                \
+  template <int P>                                                                       \
+  WEDGE_WIDE_INLINE WideT<P> operator OP(WideT<P> a, const WideT<P>& b) {                           \
+    for (int i = 0; i < P; ++i) a.p[i] = a.p[i] OP b.p[i];                               \
+    return a;                                                                            \
+  }                                                                                      \
+  template <int P>                                                                       \
+  WEDGE_WIDE_INLINE WideT<P> operator OP(WideT<P> a, double b) {                                    \
+    for (int i = 0; i < P; ++i) a.p[i] = a.p[i] OP b;                                    \
+    return a;                                                                            \
+  }                                                                                      \
+  template <int P>                                                                       \
+  WEDGE_WIDE_INLINE WideT<P> operator OP(double a, WideT<P> b) {                                    \
+    for (int i = 0; i < P; ++i) b.p[i] = a OP b.p[i];                                    \
+    return b;                                                                            \
+  }                                                                                      \
+  template <int P>                                                                       \
+  WEDGE_WIDE_INLINE WideT<P>& operator OP##=(WideT<P>& a, const WideT<P>& b) {                      \
+    return a = a OP b;                                                                   \
+  }
+WEDGE_WIDE_OP(+)
+WEDGE_WIDE_OP(-)
+WEDGE_WIDE_OP(*)
+#undef WEDGE_WIDE_OP
+#define WEDGE_WIDE_COMPARE(OP)                                                           \
+  template <int P>                                                                       \
+  WEDGE_WIDE_INLINE WideMaskT<P> operator OP(const WideT<P>& a, const WideT<P>& b) {                \
+    WideMaskT<P> m;                                                                      \
+    for (int i = 0; i < P; ++i) m.p[i] = a.p[i] OP b.p[i];                               \
+    return m;                                                                            \
+  }                                                                                      \
+  template <int P>                                                                       \
+  WEDGE_WIDE_INLINE WideMaskT<P> operator OP(const WideT<P>& a, double b) {                         \
+    WideMaskT<P> m;                                                                      \
+    for (int i = 0; i < P; ++i) m.p[i] = a.p[i] OP b;                                    \
+    return m;                                                                            \
+  }
+WEDGE_WIDE_COMPARE(<)
+WEDGE_WIDE_COMPARE(>)
+WEDGE_WIDE_COMPARE(!=)
+#undef WEDGE_WIDE_COMPARE
+template <int P>
+WEDGE_WIDE_INLINE WideMaskT<P> operator&(WideMaskT<P> a, const WideMaskT<P>& b) {
+  for (int i = 0; i < P; ++i) a.p[i] &= b.p[i];
+  return a;
+}
+template <int P>
+WEDGE_WIDE_INLINE WideMaskT<P>& operator|=(WideMaskT<P>& a, const WideMaskT<P>& b) {
+  for (int i = 0; i < P; ++i) a.p[i] |= b.p[i];
+  return a;
+}
+// m ? a : b, lane by lane.
+template <int P>
+WEDGE_WIDE_INLINE WideT<P> select(const WideMaskT<P>& m, const WideT<P>& a, const WideT<P>& b) {
+  WideT<P> r;
+  for (int i = 0; i < P; ++i) r.p[i] = m.p[i] ? a.p[i] : b.p[i];
+  return r;
+}
+template <int P>
+WEDGE_WIDE_INLINE bool any(const WideMaskT<P>& m) {
+  PackMask x = m.p[0];
+  for (int i = 1; i < P; ++i) x |= m.p[i];
+  return (x[0] | x[1]) != 0;
+}
+
+// A wide value from f(0), .., f(lanes - 1), paired in registers: a pack read back from two separate
+// scalar stores to memory would stall on the store buffer.
+template <class W, class F>
+WEDGE_WIDE_INLINE W make_wide(F&& f) {
+  W w;
+  for (int i = 0; i < int(sizeof(W::p) / sizeof(Pack)); ++i) w.p[i] = Pack{f(2 * i), f(2 * i + 1)};
+  return w;
+}
+
+template <int N>
+inline constexpr int kPacks = N == 2 ? 4 : N <= 3 ? 2 : 1;
+template <int N>
+inline constexpr int kLanes = 2 * kPacks<N>;
+template <int N>
+using Wide = WideT<kPacks<N>>;
+template <int N>
+using WideMask = WideMaskT<kPacks<N>>;
+
+// Slot k of a wide constraint: every lane's k-th point (zero where a lane has none).
+template <int N>
+struct WidePoint {
+  static constexpr int K = kBiv<N>;
+  Wide<N> separation, normal_mass, normal_impulse, normal_total;  // as PointConstraint
+  Wide<N> jn_a[K], jn_b[K], dn_a[K], dn_b[K];
+  Wide<N> friction, sliding;  // sliding: 1 or 0
+  Wide<N> tangent_impulse[N], slip_direction[N], ra[N], rb[N];
+  Wide<N> tangent_mass[N * N];  // column-major, as Eigen's
+  Wide<N> base_separation;
+};
+
+// kLanes<N> constraints of one colour.
+template <int N>
+struct WideConstraint {
+  Wide<N> normal[N];
+  Wide<N> inv_mass_a, inv_mass_b;  // 1/kg, 0 for a body that does not move
+  Wide<N> iso_a, iso_b;            // isotropic inverse inertia (0 for a body that does not move)
+  int a[kLanes<N>], b[kLanes<N>];     // solver bodies; -1 in an empty lane
+  int constraint[kLanes<N>];       // index into constraints; -1 in an empty lane
+  int first = 0, count = 0;     // its slots: wide_points[first .. first + count)
+  int inertia = -1;             // wide_inertia index when a moving body is not isotropic, else -1
+  unsigned move_a = 0, move_b = 0;  // bit l: lane l's body moves (its velocities are written back)
+};
+
+// The inverse inertia matrices of a wide constraint whose bodies are not all isotropic.
+template <int N>
+struct WideInertia {
+  Wide<N> a[kBiv<N> * kBiv<N>], b[kBiv<N> * kBiv<N>];  // column-major (0 for a body that does not move)
+};
+
+}  // namespace wedge::contact
