@@ -40,7 +40,7 @@ Softness make_soft(double hertz, double zeta, double h) {
   return {omega / a1, a2 * a3, a3};
 }
 
-using ga::detail::apply_terms;
+using ga::detail::apply_terms_inline;
 template <int N>
 using LeftContraction = ga::Terms<N, ga::Set::Vector, ga::Set::Bivector, ga::Set::Vector, ga::Product::LeftContraction>;
 template <int N>
@@ -99,12 +99,12 @@ struct WideVelocities {
 
 // The impulse j at the points' lever arms ra, rb to the lanes' velocities (apply_impulse).
 template <int N>
-inline void apply_wide_impulse(const WideConstraint<N>& c, const WideInertia<N>* inertia, const Wide<N>* ra,
+[[gnu::always_inline]] inline void apply_wide_impulse(const WideConstraint<N>& c, const WideInertia<N>* inertia, const Wide<N>* ra,
                                const Wide<N>* rb, const Wide<N>* j, WideVelocities<N>& v) {
   constexpr int K = kBiv<N>;
   Wide<N> ta[K] = {}, tb[K] = {};
-  apply_terms<Outer<N>::table>(ra, j, ta, std::make_index_sequence<Outer<N>::table.size()>{});
-  apply_terms<Outer<N>::table>(rb, j, tb, std::make_index_sequence<Outer<N>::table.size()>{});
+  apply_terms_inline<Outer<N>::table>(ra, j, ta, std::make_index_sequence<Outer<N>::table.size()>{});
+  apply_terms_inline<Outer<N>::table>(rb, j, tb, std::make_index_sequence<Outer<N>::table.size()>{});
   for (int i = 0; i < N; ++i) {
     v.va[i] -= c.inv_mass_a * j[i];
     v.vb[i] += c.inv_mass_b * j[i];
@@ -193,8 +193,8 @@ struct WidePass {
     const WideMask<N> active = (p.friction > 0.0) & held;
     if (!any(active)) return;
     Wide<N> ca[N] = {}, cb[N] = {};  // r . w
-    apply_terms<LeftContraction<N>::table>(p.ra, v.wa, ca, std::make_index_sequence<LeftContraction<N>::table.size()>{});
-    apply_terms<LeftContraction<N>::table>(p.rb, v.wb, cb, std::make_index_sequence<LeftContraction<N>::table.size()>{});
+    apply_terms_inline<LeftContraction<N>::table>(p.ra, v.wa, ca, std::make_index_sequence<LeftContraction<N>::table.size()>{});
+    apply_terms_inline<LeftContraction<N>::table>(p.rb, v.wb, cb, std::make_index_sequence<LeftContraction<N>::table.size()>{});
     Wide<N> u[N], slip[N], next[N];
     for (int i = 0; i < N; ++i) u[i] = ((v.vb[i] + cb[i]) - v.va[i]) - ca[i];
     const Wide<N> un = wide_dot<N>(c.normal, u);

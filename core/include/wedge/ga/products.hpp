@@ -26,11 +26,18 @@ inline auto coeff_data(X& x) {
 // One expression per term on raw arrays: no template is instantiated and no overload resolved per term
 // (the per-term function templates this replaced made GA-heavy files take minutes to compile). X is
 // double, or a vector of doubles for the contact solver's lanes (one independent product per lane).
+// (apply_terms_inline is forced inline, for the solver's lanes, whose values a call would pass through
+// memory; the products below leave the choice to the compiler, which measured faster for them.)
 template <const auto& T, class X, std::size_t... I>
-inline void apply_terms([[maybe_unused]] const X* __restrict a, [[maybe_unused]] const X* __restrict b,
-                        [[maybe_unused]] X* __restrict o, std::index_sequence<I...>) {
+[[gnu::always_inline]] inline void apply_terms_inline([[maybe_unused]] const X* __restrict a,
+                                                      [[maybe_unused]] const X* __restrict b,
+                                                      [[maybe_unused]] X* __restrict o, std::index_sequence<I...>) {
   constexpr const Term* t = T.data();  // built-in subscripts: std::array's operator[] is an overload set
   ((t[I].sign > 0 ? o[t[I].out] += a[t[I].a] * b[t[I].b] : o[t[I].out] -= a[t[I].a] * b[t[I].b]), ...);
+}
+template <const auto& T, class X, std::size_t... I>
+inline void apply_terms(const X* __restrict a, const X* __restrict b, X* __restrict o, std::index_sequence<I...> i) {
+  apply_terms_inline<T>(a, b, o, i);
 }
 
 // The number of coefficients of a value (Eigen vector or typed value).
