@@ -205,8 +205,17 @@ struct WidePass {
       next[i] = p.tangent_impulse[i] - t;
     }
     const Wide<N> limit = p.friction * p.normal_impulse;
-    const WideMask<N> outside = active & (wide_dot<N>(next, next) > limit * limit);
-    if (any(outside)) clamp_to_cones(c, p, slip, next, limit, outside);
+    WideMask<N> outside = active & (wide_dot<N>(next, next) > limit * limit);
+    if (any(outside)) {
+      // A point with no normal impulse holds no friction; one that sticks needs no call for that
+      // (as project_to_cone: zero). The rest go lane by lane.
+      const WideMask<N> unloaded = outside & (limit <= 0.0) & (p.sliding <= 0.0);
+      if (any(unloaded)) {
+        for (int i = 0; i < N; ++i) next[i] = select(unloaded, splat<Wide<N>>(0.0), next[i]);
+        outside = outside & ~unloaded;
+      }
+      if (any(outside)) clamp_to_cones(c, p, slip, next, limit, outside);
+    }
     Wide<N> change[N];
     for (int i = 0; i < N; ++i) {
       next[i] = select(active, next[i], p.tangent_impulse[i]);

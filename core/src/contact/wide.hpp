@@ -82,10 +82,16 @@ WEDGE_WIDE_OP(*)
 WEDGE_WIDE_COMPARE(<)
 WEDGE_WIDE_COMPARE(>)
 WEDGE_WIDE_COMPARE(!=)
+WEDGE_WIDE_COMPARE(<=)
 #undef WEDGE_WIDE_COMPARE
 template <int P>
 WEDGE_WIDE_INLINE WideMaskT<P> operator&(WideMaskT<P> a, const WideMaskT<P>& b) {
   for (int i = 0; i < P; ++i) a.p[i] &= b.p[i];
+  return a;
+}
+template <int P>
+WEDGE_WIDE_INLINE WideMaskT<P> operator~(WideMaskT<P> a) {
+  for (int i = 0; i < P; ++i) a.p[i] = ~a.p[i];
   return a;
 }
 template <int P>
