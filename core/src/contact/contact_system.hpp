@@ -254,6 +254,29 @@ void for_each_constraint(ContactState<N>& s, F&& fn) {
     for (int k = begin; k < end; ++k) fn(s.constraints[k]);
   });
 }
+// fn(begin, end) over items[first, last) (constraints, or wide constraints), each with first and count
+// into its points: the whole range on this thread, or, where each thread gets at least kPointGrain
+// points (a wide constraint's slot counting as `lanes`), one range per thread of equal shares of the
+// points, cut at items.
+template <class Item, class F>
+void for_shares(parallel::Workers& workers, const std::vector<Item>& items, int first, int last, int lanes, F&& fn) {
+  const int begin_point = items[first].first, end_point = items[last - 1].first + items[last - 1].count;
+  const int parts = std::min(workers.count(), (end_point - begin_point) * lanes / kPointGrain);
+  if (parts <= 1) {
+    fn(first, last);
+    return;
+  }
+  workers.for_parts(parts, [&](int part, int of) {
+    const auto cut = [&](int i) {
+      if (i == of) return last;
+      const int target = begin_point + int(std::int64_t(end_point - begin_point) * i / of);
+      return int(std::lower_bound(items.begin() + first, items.begin() + last, target,
+                                  [](const Item& c, int t) { return c.first < t; }) -
+                 items.begin());
+    };
+    fn(cut(part), cut(part + 1));
+  });
+}
 // fn(begin, end, independent) over the constraints in solver order, in runs, for passes that change the
 // bodies' velocities: colour by colour, each colour split over the workers (its constraints share no
 // moving body: independent, so a pass may interleave them and stay bit-identical), then the uncoloured
@@ -268,24 +291,7 @@ void for_each_constraint_run(ContactState<N>& s, F&& fn) {
   for (int g = 0; g + 1 < groups; ++g) {
     const int first = s.colour_start[g], last = s.colour_start[g + 1];
     if (first == last) continue;
-    const int begin_point = s.constraints[first].first;
-    const int end_point = s.constraints[last - 1].first + s.constraints[last - 1].count;
-    const int parts = std::min(s.workers.count(), (end_point - begin_point) / kPointGrain);
-    if (parts <= 1) {
-      fn(first, last, true);
-      continue;
-    }
-    // Equal shares of the colour's points (a constraint's cost is its points'), cut at constraints.
-    s.workers.for_parts(parts, [&](int part, int of) {
-      const auto cut = [&](int i) {
-        if (i == of) return last;
-        const int target = begin_point + int(std::int64_t(end_point - begin_point) * i / of);
-        return int(std::lower_bound(s.constraints.begin() + first, s.constraints.begin() + last, target,
-                                    [](const Constraint<N>& c, int t) { return c.first < t; }) -
-                   s.constraints.begin());
-      };
-      fn(cut(part), cut(part + 1), true);
-    });
+    for_shares(s.workers, s.constraints, first, last, 1, [&](int begin, int end) { fn(begin, end, true); });
   }
   fn(s.colour_start[groups - 1], s.colour_start[groups], false);
 }

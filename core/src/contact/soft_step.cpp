@@ -244,22 +244,13 @@ void for_each_wide(ContactState<N>& s, F&& fn) {
   for (int g = 0; g < groups; ++g) {
     const int first = s.wide_start[g], last = s.wide_start[g + 1];
     if (first == last) continue;
-    const int begin_slot = s.wide[first].first, end_slot = s.wide[last - 1].first + s.wide[last - 1].count;
-    const int parts = g + 1 < groups ? std::min(s.workers.count(), (end_slot - begin_slot) * kLanes<N> / kPointGrain) : 1;
-    if (parts <= 1) {
+    if (g + 1 < groups) {
+      for_shares(s.workers, s.wide, first, last, kLanes<N>, [&](int begin, int end) {
+        for (int k = begin; k < end; ++k) fn(s.wide[k]);
+      });
+    } else {
       for (int k = first; k < last; ++k) fn(s.wide[k]);
-      continue;
     }
-    s.workers.for_parts(parts, [&](int part, int of) {
-      const auto cut = [&](int i) {
-        if (i == of) return last;
-        const int target = begin_slot + int(std::int64_t(end_slot - begin_slot) * i / of);
-        return int(std::lower_bound(s.wide.begin() + first, s.wide.begin() + last, target,
-                                    [](const WideConstraint<N>& c, int t) { return c.first < t; }) -
-                   s.wide.begin());
-      };
-      for (int k = cut(part); k < cut(part + 1); ++k) fn(s.wide[k]);
-    });
   }
 }
 
