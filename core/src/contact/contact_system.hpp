@@ -18,6 +18,8 @@
 #include <memory>
 #include <vector>
 
+#include <Eigen/LU>  // set_effective_masses: inverse()
+
 #include "wedge/body.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/broadphase.hpp"
@@ -354,6 +356,12 @@ void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, cons
 // constraint, in order. Run by prepare_soft_step.
 template <int N>
 void pack_wide(ContactState<N>& state);
+// One solve (use_bias) or relax pass of the contacts over the packed lanes, and the lanes' impulses back
+// to the points (run by solve_substep and finish_soft_step; declared for the tests).
+template <int N>
+void solve_contacts(ContactState<N>& state, const ContactSettings& settings, double h, bool use_bias);
+template <int N>
+void unpack_wide(ContactState<N>& state);
 // islands.cpp
 template <int N>
 void compute_levels(ContactState<N>& state, const std::vector<Body<N>>& bodies);

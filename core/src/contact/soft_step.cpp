@@ -273,13 +273,6 @@ void warm_start_substep(ContactState<N>& s) {
 }
 
 template <int N>
-void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
-  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
-                         s.soft_mass_scale, s.soft_impulse_scale,        use_bias};
-  for_each_wide(s, [&](const WideConstraint<N>& c) { pass(s, c); });
-}
-
-template <int N>
 void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   constexpr int K = kBiv<N>;
   const Constraint<N>* c[kLanes<N>];
@@ -331,27 +324,6 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// The lanes' accumulated impulses back to the points (events, restitution, the next step's warm start).
-template <int N>
-void unpack_wide(ContactState<N>& s) {
-  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const WideConstraint<N>& w = s.wide[i];
-      for (int l = 0; l < kLanes<N>; ++l) {
-        if (w.constraint[l] < 0) continue;
-        const Constraint<N>& c = s.constraints[w.constraint[l]];
-        for (int k = 0; k < c.count; ++k) {
-          const WidePoint<N>& q = s.wide_points[w.first + k];
-          PointConstraint<N>& p = s.points[c.first + k];
-          p.normal_impulse = q.normal_impulse[l];
-          p.normal_total = q.normal_total[l];
-          for (int j = 0; j < N; ++j) p.tangent_impulse[j] = q.tangent_impulse[j][l];
-        }
-      }
-    }
-  });
-}
-
 // An impulse of `change` along the normal at the point (apply_impulse through the normal's rows).
 template <int N>
 void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& n,
@@ -399,6 +371,35 @@ Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
 }
 
 }  // namespace
+
+// One solve (use_bias) or relax pass over the lanes.
+template <int N>
+void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
+  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
+                         s.soft_mass_scale, s.soft_impulse_scale,        use_bias};
+  for_each_wide(s, [&](const WideConstraint<N>& c) { pass(s, c); });
+}
+
+// The lanes' accumulated impulses back to the points (events, restitution, the next step's warm start).
+template <int N>
+void unpack_wide(ContactState<N>& s) {
+  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const WideConstraint<N>& w = s.wide[i];
+      for (int l = 0; l < kLanes<N>; ++l) {
+        if (w.constraint[l] < 0) continue;
+        const Constraint<N>& c = s.constraints[w.constraint[l]];
+        for (int k = 0; k < c.count; ++k) {
+          const WidePoint<N>& q = s.wide_points[w.first + k];
+          PointConstraint<N>& p = s.points[c.first + k];
+          p.normal_impulse = q.normal_impulse[l];
+          p.normal_total = q.normal_total[l];
+          for (int j = 0; j < N; ++j) p.tangent_impulse[j] = q.tangent_impulse[j][l];
+        }
+      }
+    }
+  });
+}
 
 // Packs the colour-ordered constraints into lanes: within a colour by point count, most first (so the
 // lanes of a wide constraint are filled alike), kLanes<N> to a wide constraint; the uncoloured group,
@@ -562,7 +563,9 @@ void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
   template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);       \
-  template void pack_wide<N>(ContactState<N>&);
+  template void pack_wide<N>(ContactState<N>&);                                                              \
+  template void solve_contacts<N>(ContactState<N>&, const ContactSettings&, double, bool);                  \
+  template void unpack_wide<N>(ContactState<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
