@@ -7,10 +7,10 @@
 // constraint's last point, has no mass and takes no impulse. Velocities are gathered into lanes once
 // per constraint and pass, and written back once.
 //
-// Wide is GCC's generic vector (also Clang's): the compiler uses the widest registers the build allows
-// (two SSE2 registers per Wide on baseline x86-64) and every lane is plain IEEE double arithmetic, so the
-// results do not depend on the instruction set. The lanes a constraint goes to are fixed by the colour
-// order alone, so the results do not depend on the worker count either.
+// A Wide is P packs of two doubles, GCC's generic 16-byte vectors (also Clang's; one SSE2 register on
+// baseline x86-64, NEON elsewhere), and every lane is plain IEEE double arithmetic, so the results do
+// not depend on the instruction set. The lanes a constraint goes to are fixed by the colour order
+// alone, so the results do not depend on the worker count either.
 #pragma once
 
 #include <cstdint>
