@@ -60,7 +60,8 @@ namespace {
 
 // A contact state whose constraints have the given point counts and bodies, and colour groups
 // colour_start (the last group uncoloured); every point's fields are distinct numbers.
-contact::ContactState<2> constraints_with(const std::vector<int>& counts, const std::vector<std::pair<int, int>>& bodies,
+contact::ContactState<2> constraints_with(const std::vector<int>& counts,
+                                          const std::vector<std::pair<int, int>>& bodies,
                                           std::vector<int> colour_start, int body_count) {
   contact::ContactState<2> s;
   s.solver_bodies.resize(body_count);
@@ -184,7 +185,8 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
       }
       CHECK(wc.count == most);
       // Only the uncoloured group goes one to a wide constraint.
-      CHECK(used == (g + 2 == int(s.wide_start.size()) ? 1 : std::min(L, s.colour_start[g + 1] - s.colour_start[g] - (w - s.wide_start[g]) * L)));
+      const int left = s.colour_start[g + 1] - s.colour_start[g] - (w - s.wide_start[g]) * L;
+      CHECK(used == (g + 2 == int(s.wide_start.size()) ? 1 : std::min(L, left)));
       // A moving body that is not isotropic brings its inverse inertia matrix along.
       const bool general = (wc.a[0] == 1);
       CHECK((wc.inertia >= 0) == general);

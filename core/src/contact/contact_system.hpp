@@ -101,13 +101,14 @@ struct SolverBody {
 // accumulated impulses of the current stage.
 template <int N>
 struct PointConstraint {
-  // What the soft step's normal passes read, first and together (a 4D point is 624 B).
-  double separation = 0.0;       // m, soft step: the separation after the last position update
+  // (The soft step's passes read these from the lanes, wide.hpp, packed from here once per step and
+  // unpacked after the last sub-step: normal_impulse, normal_total and tangent_impulse.)
+  double separation = 0.0;       // m, soft step: the separation when the step began (the lanes follow it)
   double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
   double normal_impulse = 0.0;   // N s, accumulated in the current stage
   double normal_total = 0.0;     // N s, over all stages (events, ContactInfo)
   // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
-  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb).
+  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb; restitution reads them).
   Eigen::Matrix<double, kBiv<N>, 1> jn_a, jn_b, dn_a, dn_b;
   // Friction (and both passes of the paper's solver).
   double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start

@@ -67,9 +67,9 @@ template <int N>
 // The friction impulse a point should hold after a pass, given its tangential slip velocity: the
 // impulse that stops the slip if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when
 // the step began), else mu j_n against the slip.
-// (Forced inline into the passes, its rare slow path project_to_cone kept out: called, it spilled the
-// slip to the stack, read back as wider loads that stall on the narrower stores they follow; 2D pyramid
-// -11%, 4D pile -7%. Forcing apply_impulse inline too made the 3D pile 19% slower: left to the compiler.)
+// The paper's solver's (soft_step.cpp does the same on its lanes, clamp_to_cones for the slow branch).
+// (Forced inline, its rare slow path project_to_cone kept out: called, it spilled the slip to the stack,
+// read back as wider loads that stall on the narrower stores they follow.)
 template <int N>
 [[gnu::always_inline]] inline Vec<N> friction_update(const PointConstraint<N>& p, const Vec<N>& n, const Vec<N>& slip) {
   const Vec<N> old = p.tangent_impulse;

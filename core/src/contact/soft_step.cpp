@@ -46,21 +46,6 @@ using LeftContraction = ga::Terms<N, ga::Set::Vector, ga::Set::Bivector, ga::Set
 template <int N>
 using Outer = ga::Terms<N, ga::Set::Vector, ga::Set::Vector, ga::Set::Bivector, ga::Product::Outer>;
 
-template <class W>
-[[gnu::always_inline]] inline W splat(double x) {
-  return make_wide<W>([x](int) { return x; });
-}
-template <class W>
-[[gnu::always_inline]] inline W wide_max(const W& x, const W& y) {  // std::max per lane
-  return select(x < y, y, x);
-}
-template <int K, class W>
-[[gnu::always_inline]] inline W wide_dot(const W* x, const W* y) {
-  W sum = x[0] * y[0];
-  for (int i = 1; i < K; ++i) sum += x[i] * y[i];
-  return sum;
-}
-
 // The two bodies' velocities of a wide constraint, lane by lane.
 template <int N>
 struct WideVelocities {
@@ -97,10 +82,17 @@ struct WideVelocities {
   }
 };
 
+// The inverse inertia matrices of a wide constraint whose bodies are not all isotropic, else null.
+template <int N>
+const WideInertia<N>* inertia_of(const ContactState<N>& s, const WideConstraint<N>& c) {
+  return c.inertia >= 0 ? &s.wide_inertia[c.inertia] : nullptr;
+}
+
 // The impulse j at the points' lever arms ra, rb to the lanes' velocities (apply_impulse).
 template <int N>
-[[gnu::always_inline]] inline void apply_wide_impulse(const WideConstraint<N>& c, const WideInertia<N>* inertia, const Wide<N>* ra,
-                               const Wide<N>* rb, const Wide<N>* j, WideVelocities<N>& v) {
+[[gnu::always_inline]] inline void apply_wide_impulse(const WideConstraint<N>& c, const WideInertia<N>* inertia,
+                                                      const Wide<N>* ra, const Wide<N>* rb, const Wide<N>* j,
+                                                      WideVelocities<N>& v) {
   constexpr int K = kBiv<N>;
   Wide<N> ta[K] = {}, tb[K] = {};
   apply_terms_inline<Outer<N>::table>(ra, j, ta, std::make_index_sequence<Outer<N>::table.size()>{});
@@ -130,8 +122,8 @@ template <int N>
 // Friction outside the cone, lane by lane (friction_update's slow branch): kinetic friction against the
 // slip the point had when the step began, or the cone's nearest impulse in the tangent mass's metric.
 template <int N>
-[[gnu::noinline]] void clamp_to_cones(const WideConstraint<N>& c, const WidePoint<N>& p, const Wide<N>* slip, Wide<N>* next,
-                                      Wide<N> limit, WideMask<N> outside) {
+[[gnu::noinline]] void clamp_to_cones(const WideConstraint<N>& c, const WidePoint<N>& p, const Wide<N>* slip,
+                                      Wide<N>* next, Wide<N> limit, WideMask<N> outside) {
   for (int l = 0; l < kLanes<N>; ++l) {
     if (!outside[l]) continue;
     Vec<N> n, sl, nx, dir;
@@ -171,7 +163,8 @@ struct WidePass {
     Wide<N> du[N];
     for (int i = 0; i < N; ++i) du[i] = v.vb[i] - v.va[i];
     const Wide<N> un = wide_dot<N>(c.normal, du) + wide_dot<K>(p.jn_b, v.wb) - wide_dot<K>(p.jn_a, v.wa);
-    const Wide<N> next = wide_max(p.normal_impulse - p.normal_mass * (ms * un + bias) - is * p.normal_impulse, splat<Wide<N>>(0.0));
+    const Wide<N> next =
+        wide_max(p.normal_impulse - p.normal_mass * (ms * un + bias) - is * p.normal_impulse, splat<Wide<N>>(0.0));
     const Wide<N> change = next - p.normal_impulse;
     p.normal_impulse = next;
     p.normal_total += change;
@@ -187,14 +180,15 @@ struct WidePass {
   }
 
   [[gnu::always_inline]] void friction(const WideConstraint<N>& c, const WideInertia<N>* inertia, WidePoint<N>& p,
-                WideVelocities<N>& v) const {
+                                       WideVelocities<N>& v) const {
     WideMask<N> held = p.normal_impulse > 0.0;
     for (int i = 0; i < N; ++i) held |= p.tangent_impulse[i] != 0.0;
     const WideMask<N> active = (p.friction > 0.0) & held;
     if (!any(active)) return;
     Wide<N> ca[N] = {}, cb[N] = {};  // r . w
-    apply_terms_inline<LeftContraction<N>::table>(p.ra, v.wa, ca, std::make_index_sequence<LeftContraction<N>::table.size()>{});
-    apply_terms_inline<LeftContraction<N>::table>(p.rb, v.wb, cb, std::make_index_sequence<LeftContraction<N>::table.size()>{});
+    constexpr auto terms = std::make_index_sequence<LeftContraction<N>::table.size()>{};
+    apply_terms_inline<LeftContraction<N>::table>(p.ra, v.wa, ca, terms);
+    apply_terms_inline<LeftContraction<N>::table>(p.rb, v.wb, cb, terms);
     Wide<N> u[N], slip[N], next[N];
     for (int i = 0; i < N; ++i) u[i] = ((v.vb[i] + cb[i]) - v.va[i]) - ca[i];
     const Wide<N> un = wide_dot<N>(c.normal, u);
@@ -229,7 +223,7 @@ struct WidePass {
     WideVelocities<N> v;
     v.gather(s.solver_bodies, c);
     WidePoint<N>* points = s.wide_points.data() + c.first;
-    const WideInertia<N>* inertia = c.inertia >= 0 ? &s.wide_inertia[c.inertia] : nullptr;
+    const WideInertia<N>* inertia = inertia_of(s, c);
     for (int k = 0; k < c.count; ++k) normal(c, points[k], v);
     for (int k = 0; k < c.count; ++k) friction(c, inertia, points[k], v);
     v.scatter(s.solver_bodies, c);
@@ -260,7 +254,7 @@ void warm_start_substep(ContactState<N>& s) {
   for_each_wide(s, [&](const WideConstraint<N>& c) {
     WideVelocities<N> v;
     v.gather(s.solver_bodies, c);
-    const WideInertia<N>* inertia = c.inertia >= 0 ? &s.wide_inertia[c.inertia] : nullptr;
+    const WideInertia<N>* inertia = inertia_of(s, c);
     for (int k = 0; k < c.count; ++k) {
       WidePoint<N>& p = s.wide_points[c.first + k];
       p.normal_total += p.normal_impulse;
@@ -298,7 +292,9 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   for (int k = 0; k < w.count; ++k) {
     const PointConstraint<N>* p[kLanes<N>];
     for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : nullptr;
-    const auto lanes = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return p[l] ? field(*p[l]) : 0.0; }); };
+    const auto lanes = [&](auto field) {
+      return make_wide<Wide<N>>([&](int l) { return p[l] ? field(*p[l]) : 0.0; });
+    };
     WidePoint<N>& q = s.wide_points[w.first + k];
     q.separation = lanes([](const PointConstraint<N>& x) { return x.separation; });
     q.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });

@@ -122,6 +122,22 @@ WEDGE_WIDE_INLINE W make_wide(F&& f) {
   return w;
 }
 
+// Every lane x (splat), the larger of x and y per lane (std::max's answer), and sum_i x_i y_i per lane.
+template <class W>
+WEDGE_WIDE_INLINE W splat(double x) {
+  return make_wide<W>([x](int) { return x; });
+}
+template <class W>
+WEDGE_WIDE_INLINE W wide_max(const W& x, const W& y) {  // std::max per lane
+  return select(x < y, y, x);
+}
+template <int K, class W>
+WEDGE_WIDE_INLINE W wide_dot(const W* x, const W* y) {
+  W sum = x[0] * y[0];
+  for (int i = 1; i < K; ++i) sum += x[i] * y[i];
+  return sum;
+}
+
 template <int N>
 inline constexpr int kPacks = N == 2 ? 4 : N <= 3 ? 2 : 1;
 template <int N>
