@@ -321,14 +321,7 @@ void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings
       const double change = next - p.normal_impulse;
       p.normal_impulse = next;
       p.normal_total += change;
-      if (!a.frozen) {
-        a.v -= (a.inv_mass * change) * n;
-        a.w.c -= change * p.dn_a;
-      }
-      if (!b.frozen) {
-        b.v += (b.inv_mass * change) * n;
-        b.w.c += change * p.dn_b;
-      }
+      contact::apply_normal_impulse(a, b, p, n, change);
     }
     for (int k = 0; k < c.count; ++k) {
       contact::PointConstraint<N>& p = s.points[c.first + k];

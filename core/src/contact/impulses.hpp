@@ -22,6 +22,20 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
   }
 }
 
+// An impulse of `change` along the normal at the point (apply_impulse through the normal's rows).
+template <int N>
+inline void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p,
+                                 const Vec<N>& n, double change) {
+  if (!a.frozen) {
+    a.v -= (a.inv_mass * change) * n;
+    a.w.c -= change * p.dn_a;
+  }
+  if (!b.frozen) {
+    b.v += (b.inv_mass * change) * n;
+    b.w.c += change * p.dn_b;
+  }
+}
+
 // The friction impulse in the cone |j| <= limit nearest to the unconstrained one, j*, in the metric of
 // the point's tangential effective mass M = (P K P + n n^T): min (j - j*)^T M (j - j*). This is the exact
 // minimiser of the point's share of the kinetic energy, so the passes over the points are block

@@ -320,20 +320,6 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// An impulse of `change` along the normal at the point (apply_impulse through the normal's rows).
-template <int N>
-void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& n,
-                          double change) {
-  if (!a.frozen) {
-    a.v -= (a.inv_mass * change) * n;
-    a.w.c -= change * p.dn_a;
-  }
-  if (!b.frozen) {
-    b.v += (b.inv_mass * change) * n;
-    b.w.c += change * p.dn_b;
-  }
-}
-
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
 // step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule).
 template <int N>
