@@ -341,14 +341,11 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
   });
 }
 
-// m^T v: Eigen's sums for its coefficients, stored in pairs (ga::detail::store_pairs) since the dot
-// products below read it as packets (a stalled store forward cost a quarter of this stage in 2D).
+// m^T v, one Eigen dot product per coefficient (read lane by lane into the wide separations).
 template <int N>
 Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
-  double t[N];
-  for (int i = 0; i < N; ++i) t[i] = m.col(i).dot(v);
   Vec<N> o;
-  ga::detail::store_pairs<N>(t, o.data());
+  for (int i = 0; i < N; ++i) o[i] = m.col(i).dot(v);
   return o;
 }
 
@@ -397,14 +394,18 @@ void pack_wide(ContactState<N>& s) {
     s.wide_start.push_back(int(s.wide.size()));
     const int first = s.colour_start[g], last = s.colour_start[g + 1];
     const int lanes = g + 1 < groups ? kLanes<N> : 1;
-    // (A counting sort, stable: most points first, in colour order among equals; no allocation.)
     std::vector<int>& order = s.wide_scratch;
     order.resize(last - first);
-    std::array<int, kMaxManifoldPoints<N> + 2> at{};
-    constexpr int kMost = kMaxManifoldPoints<N>;
-    for (int k = first; k < last; ++k) ++at[kMost - s.constraints[k].count + 1];
-    for (int i = 1; i < kMost + 2; ++i) at[i] += at[i - 1];
-    for (int k = first; k < last; ++k) order[at[lanes > 1 ? kMost - s.constraints[k].count : 0]++] = k;
+    if (lanes == 1) {
+      for (int k = first; k < last; ++k) order[k - first] = k;
+    } else {
+      // A counting sort, stable: most points first, in colour order among equals; no allocation.
+      constexpr int kMost = kMaxManifoldPoints<N>;
+      std::array<int, kMost + 2> at{};  // at[kMost - count]: where constraints of that count go
+      for (int k = first; k < last; ++k) ++at[kMost - s.constraints[k].count + 1];
+      for (int i = 1; i < kMost + 2; ++i) at[i] += at[i - 1];
+      for (int k = first; k < last; ++k) order[at[kMost - s.constraints[k].count]++] = k;
+    }
     for (int i = 0; i < int(order.size()); i += lanes) {
       WideConstraint<N> w;
       w.first = slots;
