@@ -26,99 +26,124 @@ namespace wedge::contact {
 // Every operation is forced inline: one left as a call passes its packs through memory.
 #define WEDGE_WIDE_INLINE [[gnu::always_inline]] inline
 
-using Pack = double __attribute__((vector_size(16)));
-using PackMask = std::int64_t __attribute__((vector_size(16)));  // a comparison's lanes: -1 or 0
-
-template <int P>
-struct WideT {
-  Pack p[P];
-  WEDGE_WIDE_INLINE double operator[](int l) const { return p[l / 2][l % 2]; }
-  void set(int l, double x) { p[l / 2][l % 2] = x; }
+// A pack: L doubles in one register (16 bytes on SSE2 or NEON, 32 on AVX); its comparisons give
+// lanes of -1 or 0.
+template <int L>
+struct PackOf;
+template <>
+struct PackOf<2> {
+  using Value = double __attribute__((vector_size(16)));
+  using Mask = std::int64_t __attribute__((vector_size(16)));
 };
-template <int P>
+template <>
+struct PackOf<4> {
+  using Value = double __attribute__((vector_size(32)));
+  using Mask = std::int64_t __attribute__((vector_size(32)));
+};
+
+// P packs of L lanes.
+template <int P, int L = 2>
+struct WideT {
+  static constexpr int kPackLanes = L;
+  using Pack = typename PackOf<L>::Value;
+  Pack p[P];
+  WEDGE_WIDE_INLINE double operator[](int l) const { return p[l / L][l % L]; }
+  void set(int l, double x) { p[l / L][l % L] = x; }
+};
+template <int P, int L = 2>
 struct WideMaskT {
-  PackMask p[P];
-  WEDGE_WIDE_INLINE bool operator[](int l) const { return p[l / 2][l % 2] != 0; }
+  using Pack = typename PackOf<L>::Mask;
+  Pack p[P];
+  WEDGE_WIDE_INLINE bool operator[](int l) const { return p[l / L][l % L] != 0; }
 };
 
 // Lane-wise arithmetic, with doubles taken as every lane's value.
-#define WEDGE_WIDE_OP(OP)                                                                \
-  template <int P>                                                                       \
-  WEDGE_WIDE_INLINE WideT<P> operator OP(WideT<P> a, const WideT<P>& b) {                           \
-    for (int i = 0; i < P; ++i) a.p[i] = a.p[i] OP b.p[i];                               \
-    return a;                                                                            \
-  }                                                                                      \
-  template <int P>                                                                       \
-  WEDGE_WIDE_INLINE WideT<P> operator OP(WideT<P> a, double b) {                                    \
-    for (int i = 0; i < P; ++i) a.p[i] = a.p[i] OP b;                                    \
-    return a;                                                                            \
-  }                                                                                      \
-  template <int P>                                                                       \
-  WEDGE_WIDE_INLINE WideT<P> operator OP(double a, WideT<P> b) {                                    \
-    for (int i = 0; i < P; ++i) b.p[i] = a OP b.p[i];                                    \
-    return b;                                                                            \
-  }                                                                                      \
-  template <int P>                                                                       \
-  WEDGE_WIDE_INLINE WideT<P>& operator OP##=(WideT<P>& a, const WideT<P>& b) {                      \
-    return a = a OP b;                                                                   \
+#define WEDGE_WIDE_OP(OP)                                                                         \
+  template <int P, int L>                                                                         \
+  WEDGE_WIDE_INLINE WideT<P, L> operator OP(WideT<P, L> a, const WideT<P, L>& b) {                \
+    for (int i = 0; i < P; ++i) a.p[i] = a.p[i] OP b.p[i];                                        \
+    return a;                                                                                     \
+  }                                                                                               \
+  template <int P, int L>                                                                         \
+  WEDGE_WIDE_INLINE WideT<P, L> operator OP(WideT<P, L> a, double b) {                            \
+    for (int i = 0; i < P; ++i) a.p[i] = a.p[i] OP b;                                             \
+    return a;                                                                                     \
+  }                                                                                               \
+  template <int P, int L>                                                                         \
+  WEDGE_WIDE_INLINE WideT<P, L> operator OP(double a, WideT<P, L> b) {                            \
+    for (int i = 0; i < P; ++i) b.p[i] = a OP b.p[i];                                             \
+    return b;                                                                                     \
+  }                                                                                               \
+  template <int P, int L>                                                                         \
+  WEDGE_WIDE_INLINE WideT<P, L>& operator OP##=(WideT<P, L>& a, const WideT<P, L>& b) {           \
+    return a = a OP b;                                                                            \
   }
 WEDGE_WIDE_OP(+)
 WEDGE_WIDE_OP(-)
 WEDGE_WIDE_OP(*)
 #undef WEDGE_WIDE_OP
-#define WEDGE_WIDE_COMPARE(OP)                                                           \
-  template <int P>                                                                       \
-  WEDGE_WIDE_INLINE WideMaskT<P> operator OP(const WideT<P>& a, const WideT<P>& b) {                \
-    WideMaskT<P> m;                                                                      \
-    for (int i = 0; i < P; ++i) m.p[i] = a.p[i] OP b.p[i];                               \
-    return m;                                                                            \
-  }                                                                                      \
-  template <int P>                                                                       \
-  WEDGE_WIDE_INLINE WideMaskT<P> operator OP(const WideT<P>& a, double b) {                         \
-    WideMaskT<P> m;                                                                      \
-    for (int i = 0; i < P; ++i) m.p[i] = a.p[i] OP b;                                    \
-    return m;                                                                            \
+#define WEDGE_WIDE_COMPARE(OP)                                                                    \
+  template <int P, int L>                                                                         \
+  WEDGE_WIDE_INLINE WideMaskT<P, L> operator OP(const WideT<P, L>& a, const WideT<P, L>& b) {     \
+    WideMaskT<P, L> m;                                                                            \
+    for (int i = 0; i < P; ++i) m.p[i] = a.p[i] OP b.p[i];                                        \
+    return m;                                                                                     \
+  }                                                                                               \
+  template <int P, int L>                                                                         \
+  WEDGE_WIDE_INLINE WideMaskT<P, L> operator OP(const WideT<P, L>& a, double b) {                 \
+    WideMaskT<P, L> m;                                                                            \
+    for (int i = 0; i < P; ++i) m.p[i] = a.p[i] OP b;                                             \
+    return m;                                                                                     \
   }
 WEDGE_WIDE_COMPARE(<)
 WEDGE_WIDE_COMPARE(>)
 WEDGE_WIDE_COMPARE(!=)
 WEDGE_WIDE_COMPARE(<=)
 #undef WEDGE_WIDE_COMPARE
-template <int P>
-WEDGE_WIDE_INLINE WideMaskT<P> operator&(WideMaskT<P> a, const WideMaskT<P>& b) {
+template <int P, int L>
+WEDGE_WIDE_INLINE WideMaskT<P, L> operator&(WideMaskT<P, L> a, const WideMaskT<P, L>& b) {
   for (int i = 0; i < P; ++i) a.p[i] &= b.p[i];
   return a;
 }
-template <int P>
-WEDGE_WIDE_INLINE WideMaskT<P> operator~(WideMaskT<P> a) {
+template <int P, int L>
+WEDGE_WIDE_INLINE WideMaskT<P, L> operator~(WideMaskT<P, L> a) {
   for (int i = 0; i < P; ++i) a.p[i] = ~a.p[i];
   return a;
 }
-template <int P>
-WEDGE_WIDE_INLINE WideMaskT<P>& operator|=(WideMaskT<P>& a, const WideMaskT<P>& b) {
+template <int P, int L>
+WEDGE_WIDE_INLINE WideMaskT<P, L>& operator|=(WideMaskT<P, L>& a, const WideMaskT<P, L>& b) {
   for (int i = 0; i < P; ++i) a.p[i] |= b.p[i];
   return a;
 }
 // m ? a : b, lane by lane.
-template <int P>
-WEDGE_WIDE_INLINE WideT<P> select(const WideMaskT<P>& m, const WideT<P>& a, const WideT<P>& b) {
-  WideT<P> r;
+template <int P, int L>
+WEDGE_WIDE_INLINE WideT<P, L> select(const WideMaskT<P, L>& m, const WideT<P, L>& a, const WideT<P, L>& b) {
+  WideT<P, L> r;
   for (int i = 0; i < P; ++i) r.p[i] = m.p[i] ? a.p[i] : b.p[i];
   return r;
 }
-template <int P>
-WEDGE_WIDE_INLINE bool any(const WideMaskT<P>& m) {
-  PackMask x = m.p[0];
+template <int P, int L>
+WEDGE_WIDE_INLINE bool any(const WideMaskT<P, L>& m) {
+  auto x = m.p[0];
   for (int i = 1; i < P; ++i) x |= m.p[i];
-  return (x[0] | x[1]) != 0;
+  std::int64_t r = 0;
+  for (int l = 0; l < L; ++l) r |= x[l];
+  return r != 0;
 }
 
-// A wide value from f(0), .., f(lanes - 1), paired in registers: a pack read back from two separate
-// scalar stores to memory would stall on the store buffer.
+// A wide value from f(0), .., f(lanes - 1), built in registers: a pack read back from separate scalar
+// stores to memory would stall on the store buffer.
 template <class W, class F>
 WEDGE_WIDE_INLINE W make_wide(F&& f) {
   W w;
-  for (int i = 0; i < int(sizeof(W::p) / sizeof(Pack)); ++i) w.p[i] = Pack{f(2 * i), f(2 * i + 1)};
+  constexpr int L = W::kPackLanes;
+  for (int i = 0; i < int(sizeof(W::p) / sizeof(w.p[0])); ++i) {
+    if constexpr (L == 2) {
+      w.p[i] = typename W::Pack{f(2 * i), f(2 * i + 1)};
+    } else {
+      w.p[i] = typename W::Pack{f(4 * i), f(4 * i + 1), f(4 * i + 2), f(4 * i + 3)};
+    }
+  }
   return w;
 }
 
@@ -139,13 +164,20 @@ WEDGE_WIDE_INLINE W wide_dot(const W* x, const W* y) {
 }
 
 template <int N>
-inline constexpr int kPacks = N == 2 ? 4 : N <= 3 ? 2 : 1;
+inline constexpr int kLanes = N == 2 ? 8 : N <= 3 ? 4 : 2;
+#ifdef __AVX__
 template <int N>
-inline constexpr int kLanes = 2 * kPacks<N>;
+inline constexpr int kPackLanes = kLanes<N> % 4 == 0 ? 4 : 2;
+#else
 template <int N>
-using Wide = WideT<kPacks<N>>;
+inline constexpr int kPackLanes = 2;
+#endif
 template <int N>
-using WideMask = WideMaskT<kPacks<N>>;
+inline constexpr int kPacks = kLanes<N> / kPackLanes<N>;
+template <int N>
+using Wide = WideT<kPacks<N>, kPackLanes<N>>;
+template <int N>
+using WideMask = WideMaskT<kPacks<N>, kPackLanes<N>>;
 
 // Slot k of a wide constraint: every lane's k-th point (zero where a lane has none).
 template <int N>
