@@ -177,6 +177,13 @@ struct GrabConstraint {
 
 // Everything the contact stages keep between and during steps. Plain data: the stages are free
 // functions, one file per group (see the top of this file).
+// The instruction set of the soft step's lane kernels (wide.hpp): 2-lane packs (SSE2, or NEON), or
+// 4-lane packs on AVX2 in 2D and 3D. Both give the same bits.
+enum class Lanes { Sse2, Avx2 };
+// Avx2 where the CPU has it, unless the environment variable WEDGE_SIMD is "sse2" ("avx2" or "auto":
+// the default; any other value is reported on stderr once and taken as "auto").
+Lanes default_lanes();
+
 template <int N>
 struct ContactState {
   BroadPhase<N> broad_phase;
@@ -203,6 +210,7 @@ struct ContactState {
   std::vector<WidePoint<N>> wide_points;
   std::vector<WideInertia<N>> wide_inertia;
   std::vector<int> wide_start, wide_scratch;
+  Lanes lanes = default_lanes();  // the lane kernels' instruction set (the same bits either way)
   double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
   std::vector<int> shock_order;  // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers

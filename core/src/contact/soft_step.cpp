@@ -21,13 +21,21 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include "contact/impulses.hpp"
+#include "contact/lanes.hpp"
 #include "instantiate.hpp"
 
 namespace wedge::contact {
 
 namespace {
+
+using lanes::Separations;
+using lanes::WarmStart;
+using lanes::WidePass;
 
 // Implicit spring coefficients (as b2MakeSoft): bias rate 1/s, and the mass and impulse scales.
 struct Softness {
@@ -40,230 +48,39 @@ Softness make_soft(double hertz, double zeta, double h) {
   return {omega / a1, a2 * a3, a3};
 }
 
-using ga::detail::apply_terms_inline;
-template <int N>
-using LeftContraction = ga::Terms<N, ga::Set::Vector, ga::Set::Bivector, ga::Set::Vector, ga::Product::LeftContraction>;
-template <int N>
-using Outer = ga::Terms<N, ga::Set::Vector, ga::Set::Vector, ga::Set::Bivector, ga::Product::Outer>;
-
-// The two bodies' velocities of a wide constraint, lane by lane.
-template <int N>
-struct WideVelocities {
-  static constexpr int K = kBiv<N>;
-  Wide<N> va[N], wa[K], vb[N], wb[K];
-
-  void gather(const std::vector<SolverBody<N>>& bodies, const WideConstraint<N>& c) {
-    static const SolverBody<N> none{};
-    const SolverBody<N>* a[kLanes<N>];
-    const SolverBody<N>* b[kLanes<N>];
-    for (int l = 0; l < kLanes<N>; ++l) {
-      a[l] = c.a[l] >= 0 ? &bodies[c.a[l]] : &none;
-      b[l] = c.b[l] >= 0 ? &bodies[c.b[l]] : &none;
-    }
-    for (int i = 0; i < N; ++i) {
-      va[i] = make_wide<Wide<N>>([&](int l) { return a[l]->v[i]; });
-      vb[i] = make_wide<Wide<N>>([&](int l) { return b[l]->v[i]; });
-    }
-    for (int i = 0; i < K; ++i) {
-      wa[i] = make_wide<Wide<N>>([&](int l) { return a[l]->w.c[i]; });
-      wb[i] = make_wide<Wide<N>>([&](int l) { return b[l]->w.c[i]; });
-    }
+// A kernel over s.wide[begin, end): in 4-lane packs on AVX2 (lanes_avx2.cpp) where the lanes allow,
+// else in 2-lane packs.
+template <int N, class Kernel>
+void run_lanes(ContactState<N>& s, const Kernel& kernel, int begin, int end) {
+#if WEDGE_AVX2_LANES
+  if constexpr (kWideLanes4<N>) {
+    if (s.lanes == Lanes::Avx2) return lanes::run_avx2(s, kernel, begin, end);
   }
-  // Writes back the lanes whose bodies move.
-  void scatter(std::vector<SolverBody<N>>& bodies, const WideConstraint<N>& c) const {
-    for (int l = 0; l < kLanes<N>; ++l) {
-      if (c.move_a >> l & 1u) put(bodies[c.a[l]], va, wa, l);
-      if (c.move_b >> l & 1u) put(bodies[c.b[l]], vb, wb, l);
-    }
-  }
-  static void put(SolverBody<N>& body, const Wide<N>* v, const Wide<N>* w, int l) {
-    for (int i = 0; i < N; ++i) body.v[i] = v[i][l];
-    for (int i = 0; i < K; ++i) body.w.c[i] = w[i][l];
-  }
-};
-
-// The inverse inertia matrices of a wide constraint whose bodies are not all isotropic, else null.
-template <int N>
-const WideInertia<N>* inertia_of(const ContactState<N>& s, const WideConstraint<N>& c) {
-  return c.inertia >= 0 ? &s.wide_inertia[c.inertia] : nullptr;
+#endif
+  kernel.template run<LaneTypes<N, 2>>(s, begin, end);
 }
 
-// The impulse j at the points' lever arms ra, rb to the lanes' velocities (apply_impulse).
-template <int N>
-[[gnu::always_inline]] inline void apply_wide_impulse(const WideConstraint<N>& c, const WideInertia<N>* inertia,
-                                                      const Wide<N>* ra, const Wide<N>* rb, const Wide<N>* j,
-                                                      WideVelocities<N>& v) {
-  constexpr int K = kBiv<N>;
-  Wide<N> ta[K] = {}, tb[K] = {};
-  apply_terms_inline<Outer<N>::table>(ra, j, ta, std::make_index_sequence<Outer<N>::table.size()>{});
-  apply_terms_inline<Outer<N>::table>(rb, j, tb, std::make_index_sequence<Outer<N>::table.size()>{});
-  for (int i = 0; i < N; ++i) {
-    v.va[i] -= c.inv_mass_a * j[i];
-    v.vb[i] += c.inv_mass_b * j[i];
-  }
-  if (!inertia) {
-    for (int i = 0; i < K; ++i) {
-      v.wa[i] -= c.iso_a * ta[i];
-      v.wb[i] += c.iso_b * tb[i];
-    }
-    return;
-  }
-  for (int i = 0; i < K; ++i) {
-    Wide<N> da = inertia->a[i] * ta[0], db = inertia->b[i] * tb[0];
-    for (int k = 1; k < K; ++k) {
-      da += inertia->a[k * K + i] * ta[k];
-      db += inertia->b[k * K + i] * tb[k];
-    }
-    v.wa[i] -= da;
-    v.wb[i] += db;
-  }
-}
-
-// Friction outside the cone, lane by lane (friction_update's slow branch): kinetic friction against the
-// slip the point had when the step began, or the cone's nearest impulse in the tangent mass's metric.
-template <int N>
-[[gnu::noinline]] void clamp_to_cones(const WideConstraint<N>& c, const WidePoint<N>& p, const Wide<N>* slip,
-                                      Wide<N>* next, Wide<N> limit, WideMask<N> outside) {
-  for (int l = 0; l < kLanes<N>; ++l) {
-    if (!outside[l]) continue;
-    Vec<N> n, sl, nx, dir;
-    Mat<N> tm;
-    for (int i = 0; i < N; ++i) {
-      n[i] = c.normal[i][l];
-      sl[i] = slip[i][l];
-      nx[i] = next[i][l];
-      dir[i] = p.slip_direction[i][l];
-    }
-    for (int i = 0; i < N * N; ++i) tm.data()[i] = p.tangent_mass[i][l];
-    const bool forward = p.sliding[l] > 0.0 && sl.dot(dir) > 0.0;
-    const Vec<N> j = forward ? Vec<N>(dir * -limit[l]) : project_to_cone(tm, n, nx, limit[l]);
-    for (int i = 0; i < N; ++i) next[i].set(l, j[i]);
-  }
-}
-
-// One pass over a wide constraint: the normal impulses first (soft when use_bias and penetrating),
-// then friction in the cone of the updated normal impulse, kLanes<N> constraints at once.
-template <int N>
-struct WidePass {
-  static constexpr int K = kBiv<N>;
-  double inv_h, push_speed, bias_scale, mass_scale, impulse_scale;
-  bool use_bias;
-
-  [[gnu::always_inline]] void normal(const WideConstraint<N>& c, WidePoint<N>& p, WideVelocities<N>& v) const {
-    const Wide<N> sep = p.separation;
-    const WideMask<N> apart = sep > 0.0;  // speculative: may close the gap within the sub-step, no more
-    Wide<N> bias = sep * inv_h, ms = splat<Wide<N>>(1.0), is = splat<Wide<N>>(0.0);
-    if (use_bias) {
-      bias = select(apart, bias, wide_max(bias_scale * sep, splat<Wide<N>>(-push_speed)));
-      ms = select(apart, ms, splat<Wide<N>>(mass_scale));
-      is = select(apart, is, splat<Wide<N>>(impulse_scale));
-    } else {
-      bias = select(apart, bias, splat<Wide<N>>(0.0));
-    }
-    Wide<N> du[N];
-    for (int i = 0; i < N; ++i) du[i] = v.vb[i] - v.va[i];
-    const Wide<N> un = wide_dot<N>(c.normal, du) + wide_dot<K>(p.jn_b, v.wb) - wide_dot<K>(p.jn_a, v.wa);
-    const Wide<N> next =
-        wide_max(p.normal_impulse - p.normal_mass * (ms * un + bias) - is * p.normal_impulse, splat<Wide<N>>(0.0));
-    const Wide<N> change = next - p.normal_impulse;
-    p.normal_impulse = next;
-    p.normal_total += change;
-    const Wide<N> ca = c.inv_mass_a * change, cb = c.inv_mass_b * change;
-    for (int i = 0; i < N; ++i) {
-      v.va[i] -= ca * c.normal[i];
-      v.vb[i] += cb * c.normal[i];
-    }
-    for (int i = 0; i < K; ++i) {
-      v.wa[i] -= change * p.dn_a[i];
-      v.wb[i] += change * p.dn_b[i];
-    }
-  }
-
-  [[gnu::always_inline]] void friction(const WideConstraint<N>& c, const WideInertia<N>* inertia, WidePoint<N>& p,
-                                       WideVelocities<N>& v) const {
-    WideMask<N> held = p.normal_impulse > 0.0;
-    for (int i = 0; i < N; ++i) held |= p.tangent_impulse[i] != 0.0;
-    const WideMask<N> active = (p.friction > 0.0) & held;
-    if (!any(active)) return;
-    Wide<N> ca[N] = {}, cb[N] = {};  // r . w
-    constexpr auto terms = std::make_index_sequence<LeftContraction<N>::table.size()>{};
-    apply_terms_inline<LeftContraction<N>::table>(p.ra, v.wa, ca, terms);
-    apply_terms_inline<LeftContraction<N>::table>(p.rb, v.wb, cb, terms);
-    Wide<N> u[N], slip[N], next[N];
-    for (int i = 0; i < N; ++i) u[i] = ((v.vb[i] + cb[i]) - v.va[i]) - ca[i];
-    const Wide<N> un = wide_dot<N>(c.normal, u);
-    for (int i = 0; i < N; ++i) slip[i] = u[i] - un * c.normal[i];
-    for (int i = 0; i < N; ++i) {
-      Wide<N> t = p.tangent_mass[i] * slip[0];
-      for (int k = 1; k < N; ++k) t += p.tangent_mass[k * N + i] * slip[k];
-      next[i] = p.tangent_impulse[i] - t;
-    }
-    const Wide<N> limit = p.friction * p.normal_impulse;
-    WideMask<N> outside = active & (wide_dot<N>(next, next) > limit * limit);
-    if (any(outside)) {
-      // A point with no normal impulse holds no friction; one that sticks needs no call for that
-      // (as project_to_cone: zero). The rest go lane by lane.
-      const WideMask<N> unloaded = outside & (limit <= 0.0) & (p.sliding <= 0.0);
-      if (any(unloaded)) {
-        for (int i = 0; i < N; ++i) next[i] = select(unloaded, splat<Wide<N>>(0.0), next[i]);
-        outside = outside & ~unloaded;
-      }
-      if (any(outside)) clamp_to_cones(c, p, slip, next, limit, outside);
-    }
-    Wide<N> change[N];
-    for (int i = 0; i < N; ++i) {
-      next[i] = select(active, next[i], p.tangent_impulse[i]);
-      change[i] = next[i] - p.tangent_impulse[i];
-      p.tangent_impulse[i] = next[i];
-    }
-    apply_wide_impulse(c, inertia, p.ra, p.rb, change, v);
-  }
-
-  void operator()(ContactState<N>& s, const WideConstraint<N>& c) const {
-    WideVelocities<N> v;
-    v.gather(s.solver_bodies, c);
-    WidePoint<N>* points = s.wide_points.data() + c.first;
-    const WideInertia<N>* inertia = inertia_of(s, c);
-    for (int k = 0; k < c.count; ++k) normal(c, points[k], v);
-    for (int k = 0; k < c.count; ++k) friction(c, inertia, points[k], v);
-    v.scatter(s.solver_bodies, c);
-  }
-};
-
-// fn(wide constraint) in solver order: colour by colour, each colour split over the workers in equal
-// shares of its slots, then the uncoloured group (one constraint per wide constraint) on this thread.
-template <int N, class F>
-void for_each_wide(ContactState<N>& s, F&& fn) {
+// A kernel over the wide constraints in solver order: colour by colour, each colour split over the
+// workers in equal shares of its slots, then the uncoloured group (one constraint per wide constraint)
+// on this thread.
+template <int N, class Kernel>
+void for_each_wide(ContactState<N>& s, const Kernel& kernel) {
   const int groups = int(s.wide_start.size()) - 1;
   for (int g = 0; g < groups; ++g) {
     const int first = s.wide_start[g], last = s.wide_start[g + 1];
     if (first == last) continue;
     if (g + 1 < groups) {
-      for_shares(s.workers, s.wide, first, last, kLanes<N>, [&](int begin, int end) {
-        for (int k = begin; k < end; ++k) fn(s.wide[k]);
-      });
+      for_shares(s.workers, s.wide, first, last, kLanes<N>,
+                 [&](int begin, int end) { run_lanes(s, kernel, begin, end); });
     } else {
-      for (int k = first; k < last; ++k) fn(s.wide[k]);
+      run_lanes(s, kernel, first, last);
     }
   }
 }
 
-// Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
-  for_each_wide(s, [&](const WideConstraint<N>& c) {
-    WideVelocities<N> v;
-    v.gather(s.solver_bodies, c);
-    const WideInertia<N>* inertia = inertia_of(s, c);
-    for (int k = 0; k < c.count; ++k) {
-      WidePoint<N>& p = s.wide_points[c.first + k];
-      p.normal_total += p.normal_impulse;
-      Wide<N> j[N];
-      for (int i = 0; i < N; ++i) j[i] = p.normal_impulse * c.normal[i] + p.tangent_impulse[i];
-      apply_wide_impulse(c, inertia, p.ra, p.rb, j, v);
-    }
-    v.scatter(s.solver_bodies, c);
-  });
+  for_each_wide(s, WarmStart<N>{});
 }
 
 template <int N>
@@ -341,14 +158,6 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
   });
 }
 
-// m^T v, one Eigen dot product per coefficient (read lane by lane into the wide separations).
-template <int N>
-Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
-  Vec<N> o;
-  for (int i = 0; i < N; ++i) o[i] = m.col(i).dot(v);
-  return o;
-}
-
 }  // namespace
 
 // One solve (use_bias) or relax pass over the lanes.
@@ -356,7 +165,7 @@ template <int N>
 void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
   const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
                          s.soft_mass_scale, s.soft_impulse_scale,        use_bias};
-  for_each_wide(s, [&](const WideConstraint<N>& c) { pass(s, c); });
+  for_each_wide(s, pass);
 }
 
 // The lanes' accumulated impulses back to the points (events, restitution, the next step's warm start).
@@ -497,38 +306,8 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
     sb.dp = bodies[i].center - sb.x0;
     sb.dq = to_matrix(bodies[i].rotor) * sb.r0_inverse;
   });
-  // s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra: the turned normal once per pair.
-  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const WideConstraint<N>& w = s.wide[i];
-      double moved[kLanes<N>];
-      Vec<N> na[kLanes<N>], nb[kLanes<N>];
-      for (int l = 0; l < kLanes<N>; ++l) {
-        if (w.constraint[l] < 0) {
-          moved[l] = 0.0;
-          na[l].setZero();
-          nb[l].setZero();
-          continue;
-        }
-        const Constraint<N>& c = s.constraints[w.constraint[l]];
-        const SolverBody<N>& a = s.solver_bodies[c.a];
-        const SolverBody<N>& b = s.solver_bodies[c.b];
-        moved[l] = c.normal.dot(b.dp - a.dp);
-        na[l] = transpose_times(a.dq, c.normal);
-        nb[l] = transpose_times(b.dq, c.normal);
-      }
-      const Wide<N> m = make_wide<Wide<N>>([&](int l) { return moved[l]; });
-      Wide<N> wa[N], wb[N];
-      for (int j = 0; j < N; ++j) {
-        wa[j] = make_wide<Wide<N>>([&](int l) { return na[l][j]; });
-        wb[j] = make_wide<Wide<N>>([&](int l) { return nb[l][j]; });
-      }
-      for (int k = w.first; k < w.first + w.count; ++k) {
-        WidePoint<N>& p = s.wide_points[k];
-        p.separation = p.base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
-      }
-    }
-  });
+  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>,
+                       [&](int begin, int end) { run_lanes(s, Separations<N>{}, begin, end); });
 }
 
 template <int N>
@@ -539,6 +318,21 @@ void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   apply_restitution(s, settings);
   keep_for_warm_start(s);
   store_velocities(s, bodies);
+}
+
+Lanes default_lanes() {
+  static const Lanes lanes = [] {
+    const char* env = std::getenv("WEDGE_SIMD");
+    const std::string want = env ? env : "auto";
+    if (want != "auto" && want != "sse2" && want != "avx2")
+      std::fprintf(stderr, "wedge: WEDGE_SIMD=%s is not auto, sse2 or avx2; using auto\n", want.c_str());
+    if (want == "sse2") return Lanes::Sse2;
+#if WEDGE_AVX2_LANES
+    if (__builtin_cpu_supports("avx2")) return Lanes::Avx2;
+#endif
+    return Lanes::Sse2;
+  }();
+  return lanes;
 }
 
 #define WEDGE_INSTANTIATE(N)                                                                                   \

@@ -26,6 +26,14 @@ namespace wedge::contact {
 // Every operation is forced inline: one left as a call passes its packs through memory.
 #define WEDGE_WIDE_INLINE [[gnu::always_inline]] inline
 
+// Whether the soft step may run its lanes as AVX2's 4-lane packs (x86 with GCC or Clang; chosen at run
+// time, contact_system.hpp, Lanes).
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define WEDGE_AVX2_LANES 1
+#else
+#define WEDGE_AVX2_LANES 0
+#endif
+
 // A pack: L doubles in one register (16 bytes on SSE2 or NEON, 32 on AVX); its comparisons give
 // lanes of -1 or 0.
 template <int L>
@@ -36,9 +44,9 @@ struct PackOf<2> {
   using Mask = std::int64_t __attribute__((vector_size(16)));
 };
 template <>
-struct PackOf<4> {
-  using Value = double __attribute__((vector_size(32)));
-  using Mask = std::int64_t __attribute__((vector_size(32)));
+struct PackOf<4> {  // aligned as the 16-byte packs, so that AVX lanes can read SSE2 lanes' storage
+  using Value = double __attribute__((vector_size(32), aligned(16)));
+  using Mask = std::int64_t __attribute__((vector_size(32), aligned(16)));
 };
 
 // P packs of L lanes.
@@ -165,38 +173,41 @@ WEDGE_WIDE_INLINE W wide_dot(const W* x, const W* y) {
 
 template <int N>
 inline constexpr int kLanes = N == 2 ? 8 : N <= 3 ? 4 : 2;
-#ifdef __AVX__
+
+// The lane types of one pack width L: 2 (SSE2, NEON) or 4 (AVX). The storage below is always in
+// 2-lane packs; the soft step's passes may read it as 4-lane packs where the CPU has AVX2 and L divides
+// kLanes (2D, 3D): the same bytes, the same lanes, the same IEEE operations lane by lane, so the same bits.
+template <int N, int L>
+struct LaneTypes {
+  static constexpr int kPackLanes = L;
+  using W = WideT<kLanes<N> / L, L>;
+  using M = WideMaskT<kLanes<N> / L, L>;
+};
 template <int N>
-inline constexpr int kPackLanes = kLanes<N> % 4 == 0 ? 4 : 2;
-#else
+using Wide = typename LaneTypes<N, 2>::W;
 template <int N>
-inline constexpr int kPackLanes = 2;
-#endif
+using WideMask = typename LaneTypes<N, 2>::M;
 template <int N>
-inline constexpr int kPacks = kLanes<N> / kPackLanes<N>;
-template <int N>
-using Wide = WideT<kPacks<N>, kPackLanes<N>>;
-template <int N>
-using WideMask = WideMaskT<kPacks<N>, kPackLanes<N>>;
+inline constexpr bool kWideLanes4 = kLanes<N> % 4 == 0;
 
 // Slot k of a wide constraint: every lane's k-th point (zero where a lane has none).
-template <int N>
-struct WidePoint {
+template <int N, class W = Wide<N>>
+struct WidePointT {
   static constexpr int K = kBiv<N>;
-  Wide<N> separation, normal_mass, normal_impulse, normal_total;  // as PointConstraint
-  Wide<N> jn_a[K], jn_b[K], dn_a[K], dn_b[K];
-  Wide<N> friction, sliding;  // sliding: 1 or 0
-  Wide<N> tangent_impulse[N], slip_direction[N], ra[N], rb[N];
-  Wide<N> tangent_mass[N * N];  // column-major, as Eigen's
-  Wide<N> base_separation;
+  W separation, normal_mass, normal_impulse, normal_total;  // as PointConstraint
+  W jn_a[K], jn_b[K], dn_a[K], dn_b[K];
+  W friction, sliding;  // sliding: 1 or 0
+  W tangent_impulse[N], slip_direction[N], ra[N], rb[N];
+  W tangent_mass[N * N];  // column-major, as Eigen's
+  W base_separation;
 };
 
 // kLanes<N> constraints of one colour.
-template <int N>
-struct WideConstraint {
-  Wide<N> normal[N];
-  Wide<N> inv_mass_a, inv_mass_b;  // 1/kg, 0 for a body that does not move
-  Wide<N> iso_a, iso_b;            // isotropic inverse inertia (0 for a body that does not move)
+template <int N, class W = Wide<N>>
+struct WideConstraintT {
+  W normal[N];
+  W inv_mass_a, inv_mass_b;  // 1/kg, 0 for a body that does not move
+  W iso_a, iso_b;            // isotropic inverse inertia (0 for a body that does not move)
   int a[kLanes<N>], b[kLanes<N>];     // solver bodies; -1 in an empty lane
   int constraint[kLanes<N>];       // index into constraints; -1 in an empty lane
   int first = 0, count = 0;     // its slots: wide_points[first .. first + count)
@@ -205,9 +216,24 @@ struct WideConstraint {
 };
 
 // The inverse inertia matrices of a wide constraint whose bodies are not all isotropic.
-template <int N>
-struct WideInertia {
-  Wide<N> a[kBiv<N> * kBiv<N>], b[kBiv<N> * kBiv<N>];  // column-major (0 for a body that does not move)
+template <int N, class W = Wide<N>>
+struct WideInertiaT {
+  W a[kBiv<N> * kBiv<N>], b[kBiv<N> * kBiv<N>];  // column-major (0 for a body that does not move)
 };
+
+template <int N>
+using WidePoint = WidePointT<N>;
+template <int N>
+using WideConstraint = WideConstraintT<N>;
+template <int N>
+using WideInertia = WideInertiaT<N>;
+
+// x (stored in 2-lane packs) seen through the lane types T of another pack width: same size, same
+// alignment, the same members at the same places (the lanes' bytes do not depend on the pack width).
+template <class T, class S>
+WEDGE_WIDE_INLINE T& lanes_as(S& x) {
+  static_assert(sizeof(T) == sizeof(S) && alignof(T) == alignof(S));
+  return *reinterpret_cast<T*>(&x);
+}
 
 }  // namespace wedge::contact

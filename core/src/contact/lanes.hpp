@@ -1,0 +1,314 @@
+// The soft step's lane kernels (internal): the passes, the warm start and the sub-step separations
+// over a range of wide constraints (wide.hpp), templates on their lane types LT (LaneTypes).
+// soft_step.cpp runs them in 2-lane packs; lanes_avx2.cpp compiles them once more in 4-lane packs for
+// AVX2 (gnu::target, in that file alone), run where the CPU has it and the lanes allow (2D, 3D): the
+// same lanes and the same IEEE operations lane by lane, so the same bits (tested). Nothing else of
+// Wedge needs AVX, and Eigen's code and alignment stay those of the baseline build.
+#pragma once
+
+#include <utility>
+
+#include "contact/contact_system.hpp"
+#include "contact/impulses.hpp"
+#include "wedge/ga/products.hpp"
+
+namespace wedge::contact::lanes {
+
+using ga::detail::apply_terms_inline;
+template <int N>
+using LeftContraction = ga::Terms<N, ga::Set::Vector, ga::Set::Bivector, ga::Set::Vector, ga::Product::LeftContraction>;
+template <int N>
+using Outer = ga::Terms<N, ga::Set::Vector, ga::Set::Vector, ga::Set::Bivector, ga::Product::Outer>;
+
+// The wide constraint, its slots and its inertia seen through LT's lanes.
+template <int N, class LT>
+struct LaneView {
+  using W = typename LT::W;
+  using M = typename LT::M;
+  using Constraint = WideConstraintT<N, W>;
+  using Point = WidePointT<N, W>;
+  using Inertia = WideInertiaT<N, W>;
+  static const Constraint& constraint(const WideConstraint<N>& c) { return lanes_as<const Constraint>(c); }
+  static Point* points(ContactState<N>& s, const WideConstraint<N>& c) {
+    return &lanes_as<Point>(s.wide_points[c.first]);
+  }
+  static const Inertia* inertia(const ContactState<N>& s, const WideConstraint<N>& c) {
+    return c.inertia >= 0 ? &lanes_as<const Inertia>(s.wide_inertia[c.inertia]) : nullptr;
+  }
+};
+
+// The two bodies' velocities of a wide constraint, lane by lane.
+template <int N, class W>
+struct WideVelocities {
+  static constexpr int K = kBiv<N>;
+  W va[N], wa[K], vb[N], wb[K];
+
+  template <class C>
+  [[gnu::always_inline]] void gather(const std::vector<SolverBody<N>>& bodies, const C& c) {
+    static const SolverBody<N> none{};
+    const SolverBody<N>* a[kLanes<N>];
+    const SolverBody<N>* b[kLanes<N>];
+    for (int l = 0; l < kLanes<N>; ++l) {
+      a[l] = c.a[l] >= 0 ? &bodies[c.a[l]] : &none;
+      b[l] = c.b[l] >= 0 ? &bodies[c.b[l]] : &none;
+    }
+    for (int i = 0; i < N; ++i) {
+      va[i] = make_wide<W>([&](int l) { return a[l]->v[i]; });
+      vb[i] = make_wide<W>([&](int l) { return b[l]->v[i]; });
+    }
+    for (int i = 0; i < K; ++i) {
+      wa[i] = make_wide<W>([&](int l) { return a[l]->w.c[i]; });
+      wb[i] = make_wide<W>([&](int l) { return b[l]->w.c[i]; });
+    }
+  }
+  // Writes back the lanes whose bodies move.
+  template <class C>
+  [[gnu::always_inline]] void scatter(std::vector<SolverBody<N>>& bodies, const C& c) const {
+    for (int l = 0; l < kLanes<N>; ++l) {
+      if (c.move_a >> l & 1u) put(bodies[c.a[l]], va, wa, l);
+      if (c.move_b >> l & 1u) put(bodies[c.b[l]], vb, wb, l);
+    }
+  }
+  [[gnu::always_inline]] static void put(SolverBody<N>& body, const W* v, const W* w, int l) {
+    for (int i = 0; i < N; ++i) body.v[i] = v[i][l];
+    for (int i = 0; i < K; ++i) body.w.c[i] = w[i][l];
+  }
+};
+
+// The impulse j at the points' lever arms ra, rb to the lanes' velocities (apply_impulse).
+template <int N, class W>
+[[gnu::always_inline]] inline void apply_wide_impulse(const WideConstraintT<N, W>& c,
+                                                      const WideInertiaT<N, W>* inertia, const W* ra, const W* rb,
+                                                      const W* j, WideVelocities<N, W>& v) {
+  constexpr int K = kBiv<N>;
+  W ta[K] = {}, tb[K] = {};
+  apply_terms_inline<Outer<N>::table>(ra, j, ta, std::make_index_sequence<Outer<N>::table.size()>{});
+  apply_terms_inline<Outer<N>::table>(rb, j, tb, std::make_index_sequence<Outer<N>::table.size()>{});
+  for (int i = 0; i < N; ++i) {
+    v.va[i] -= c.inv_mass_a * j[i];
+    v.vb[i] += c.inv_mass_b * j[i];
+  }
+  if (!inertia) {
+    for (int i = 0; i < K; ++i) {
+      v.wa[i] -= c.iso_a * ta[i];
+      v.wb[i] += c.iso_b * tb[i];
+    }
+    return;
+  }
+  for (int i = 0; i < K; ++i) {
+    W da = inertia->a[i] * ta[0], db = inertia->b[i] * tb[0];
+    for (int k = 1; k < K; ++k) {
+      da += inertia->a[k * K + i] * ta[k];
+      db += inertia->b[k * K + i] * tb[k];
+    }
+    v.wa[i] -= da;
+    v.wb[i] += db;
+  }
+}
+
+// Friction outside the cone, lane by lane (friction_update's slow branch): kinetic friction against the
+// slip the point had when the step began, or the cone's nearest impulse in the tangent mass's metric.
+// (Out of line and by reference: the rare path, and plain scalar code whatever the lanes.)
+template <int N, class W, class M>
+[[gnu::noinline]] void clamp_to_cones(const WideConstraintT<N, W>& c, const WidePointT<N, W>& p, const W* slip,
+                                      W* next, const W& limit, const M& outside) {
+  for (int l = 0; l < kLanes<N>; ++l) {
+    if (!outside[l]) continue;
+    Vec<N> n, sl, nx, dir;
+    Mat<N> tm;
+    for (int i = 0; i < N; ++i) {
+      n[i] = c.normal[i][l];
+      sl[i] = slip[i][l];
+      nx[i] = next[i][l];
+      dir[i] = p.slip_direction[i][l];
+    }
+    for (int i = 0; i < N * N; ++i) tm.data()[i] = p.tangent_mass[i][l];
+    const bool forward = p.sliding[l] > 0.0 && sl.dot(dir) > 0.0;
+    const Vec<N> j = forward ? Vec<N>(dir * -limit[l]) : project_to_cone(tm, n, nx, limit[l]);
+    for (int i = 0; i < N; ++i) next[i].set(l, j[i]);
+  }
+}
+
+// One pass over wide constraints: the normal impulses first (soft when use_bias and penetrating),
+// then friction in the cone of the updated normal impulse, kLanes<N> constraints at once.
+template <int N>
+struct WidePass {
+  static constexpr int K = kBiv<N>;
+  double inv_h, push_speed, bias_scale, mass_scale, impulse_scale;
+  bool use_bias;
+
+  template <class W, class M>
+  [[gnu::always_inline]] void normal(const WideConstraintT<N, W>& c, WidePointT<N, W>& p,
+                                     WideVelocities<N, W>& v) const {
+    const W sep = p.separation;
+    const M apart = sep > 0.0;  // speculative: may close the gap within the sub-step, no more
+    W bias = sep * inv_h, ms = splat<W>(1.0), is = splat<W>(0.0);
+    if (use_bias) {
+      bias = select(apart, bias, wide_max(bias_scale * sep, splat<W>(-push_speed)));
+      ms = select(apart, ms, splat<W>(mass_scale));
+      is = select(apart, is, splat<W>(impulse_scale));
+    } else {
+      bias = select(apart, bias, splat<W>(0.0));
+    }
+    W du[N];
+    for (int i = 0; i < N; ++i) du[i] = v.vb[i] - v.va[i];
+    const W un = wide_dot<N>(c.normal, du) + wide_dot<K>(p.jn_b, v.wb) - wide_dot<K>(p.jn_a, v.wa);
+    const W next = wide_max(p.normal_impulse - p.normal_mass * (ms * un + bias) - is * p.normal_impulse, splat<W>(0.0));
+    const W change = next - p.normal_impulse;
+    p.normal_impulse = next;
+    p.normal_total += change;
+    const W ca = c.inv_mass_a * change, cb = c.inv_mass_b * change;
+    for (int i = 0; i < N; ++i) {
+      v.va[i] -= ca * c.normal[i];
+      v.vb[i] += cb * c.normal[i];
+    }
+    for (int i = 0; i < K; ++i) {
+      v.wa[i] -= change * p.dn_a[i];
+      v.wb[i] += change * p.dn_b[i];
+    }
+  }
+
+  template <class W, class M>
+  [[gnu::always_inline]] void friction(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia,
+                                       WidePointT<N, W>& p, WideVelocities<N, W>& v) const {
+    M held = p.normal_impulse > 0.0;
+    for (int i = 0; i < N; ++i) held |= p.tangent_impulse[i] != 0.0;
+    const M active = (p.friction > 0.0) & held;
+    if (!any(active)) return;
+    W ca[N] = {}, cb[N] = {};  // r . w
+    constexpr auto terms = std::make_index_sequence<LeftContraction<N>::table.size()>{};
+    apply_terms_inline<LeftContraction<N>::table>(p.ra, v.wa, ca, terms);
+    apply_terms_inline<LeftContraction<N>::table>(p.rb, v.wb, cb, terms);
+    W u[N], slip[N], next[N];
+    for (int i = 0; i < N; ++i) u[i] = ((v.vb[i] + cb[i]) - v.va[i]) - ca[i];
+    const W un = wide_dot<N>(c.normal, u);
+    for (int i = 0; i < N; ++i) slip[i] = u[i] - un * c.normal[i];
+    for (int i = 0; i < N; ++i) {
+      W t = p.tangent_mass[i] * slip[0];
+      for (int k = 1; k < N; ++k) t += p.tangent_mass[k * N + i] * slip[k];
+      next[i] = p.tangent_impulse[i] - t;
+    }
+    const W limit = p.friction * p.normal_impulse;
+    M outside = active & (wide_dot<N>(next, next) > limit * limit);
+    if (any(outside)) {
+      // A point with no normal impulse holds no friction; one that sticks needs no call for that
+      // (as project_to_cone: zero). The rest go lane by lane.
+      const M unloaded = outside & (limit <= 0.0) & (p.sliding <= 0.0);
+      if (any(unloaded)) {
+        for (int i = 0; i < N; ++i) next[i] = select(unloaded, splat<W>(0.0), next[i]);
+        outside = outside & ~unloaded;
+      }
+      if (any(outside)) clamp_to_cones(c, p, slip, next, limit, outside);
+    }
+    W change[N];
+    for (int i = 0; i < N; ++i) {
+      next[i] = select(active, next[i], p.tangent_impulse[i]);
+      change[i] = next[i] - p.tangent_impulse[i];
+      p.tangent_impulse[i] = next[i];
+    }
+    apply_wide_impulse(c, inertia, p.ra, p.rb, change, v);
+  }
+
+  // The pass over s.wide[begin, end).
+  template <class LT>
+  [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
+    using View = LaneView<N, LT>;
+    using W = typename LT::W;
+    using M = typename LT::M;
+    for (int i = begin; i < end; ++i) {
+      const WideConstraint<N>& stored = s.wide[i];
+      const auto& c = View::constraint(stored);
+      WideVelocities<N, W> v;
+      v.gather(s.solver_bodies, c);
+      auto* points = View::points(s, stored);
+      const auto* inertia = View::inertia(s, stored);
+      for (int k = 0; k < c.count; ++k) normal<W, M>(c, points[k], v);
+      for (int k = 0; k < c.count; ++k) friction<W, M>(c, inertia, points[k], v);
+      v.scatter(s.solver_bodies, c);
+    }
+  }
+};
+
+// Applies every point's accumulated impulse (the last sub-step's answer) to the fresh velocities.
+template <int N>
+struct WarmStart {
+  template <class LT>
+  [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
+    using View = LaneView<N, LT>;
+    using W = typename LT::W;
+    for (int i = begin; i < end; ++i) {
+      const WideConstraint<N>& stored = s.wide[i];
+      const auto& c = View::constraint(stored);
+      WideVelocities<N, W> v;
+      v.gather(s.solver_bodies, c);
+      auto* points = View::points(s, stored);
+      const auto* inertia = View::inertia(s, stored);
+      for (int k = 0; k < c.count; ++k) {
+        auto& p = points[k];
+        p.normal_total += p.normal_impulse;
+        W j[N];
+        for (int d = 0; d < N; ++d) j[d] = p.normal_impulse * c.normal[d] + p.tangent_impulse[d];
+        apply_wide_impulse(c, inertia, p.ra, p.rb, j, v);
+      }
+      v.scatter(s.solver_bodies, c);
+    }
+  }
+};
+
+// m^T v, one Eigen dot product per coefficient (read lane by lane into the wide separations).
+template <int N>
+Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
+  Vec<N> o;
+  for (int i = 0; i < N; ++i) o[i] = m.col(i).dot(v);
+  return o;
+}
+
+// The sub-step's separations from the bodies' motion since the step began:
+// s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra, the turned normal once per pair.
+template <int N>
+struct Separations {
+  template <class LT>
+  [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
+    using View = LaneView<N, LT>;
+    using W = typename LT::W;
+    for (int i = begin; i < end; ++i) {
+      const WideConstraint<N>& w = s.wide[i];
+      double moved[kLanes<N>];
+      Vec<N> na[kLanes<N>], nb[kLanes<N>];
+      for (int l = 0; l < kLanes<N>; ++l) {
+        if (w.constraint[l] < 0) {
+          moved[l] = 0.0;
+          na[l].setZero();
+          nb[l].setZero();
+          continue;
+        }
+        const Constraint<N>& c = s.constraints[w.constraint[l]];
+        const SolverBody<N>& a = s.solver_bodies[c.a];
+        const SolverBody<N>& b = s.solver_bodies[c.b];
+        moved[l] = c.normal.dot(b.dp - a.dp);
+        na[l] = transpose_times(a.dq, c.normal);
+        nb[l] = transpose_times(b.dq, c.normal);
+      }
+      const W m = make_wide<W>([&](int l) { return moved[l]; });
+      W wa[N], wb[N];
+      for (int j = 0; j < N; ++j) {
+        wa[j] = make_wide<W>([&](int l) { return na[l][j]; });
+        wb[j] = make_wide<W>([&](int l) { return nb[l][j]; });
+      }
+      auto* points = View::points(s, w);
+      for (int k = 0; k < w.count; ++k) {
+        auto& p = points[k];
+        p.separation = p.base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
+      }
+    }
+  }
+};
+
+// kernel.run over s.wide[begin, end) in 4-lane packs, compiled for AVX2 (lanes_avx2.cpp; 2D and 3D).
+// (The target attribute is part of the function's identity for GCC: declared as defined.)
+#if WEDGE_AVX2_LANES
+template <int N, class Kernel>
+[[gnu::target("avx2")]] void run_avx2(ContactState<N>& s, const Kernel& kernel, int begin, int end);
+#endif
+
+}  // namespace wedge::contact::lanes
