@@ -106,6 +106,21 @@ template <int N, class W>
   }
 }
 
+// fn(c, points, inertia, v) for each wide constraint of s.wide[begin, end), seen through LT's lanes, its
+// bodies' velocities v gathered into lanes before and written back after (the passes and the warm start).
+template <int N, class LT, class F>
+[[gnu::always_inline]] inline void visit_lanes(ContactState<N>& s, int begin, int end, F&& fn) {
+  using View = LaneView<N, LT>;
+  for (int i = begin; i < end; ++i) {
+    const WideConstraint<N>& stored = s.wide[i];
+    const auto& c = View::constraint(stored);
+    WideVelocities<N, typename LT::W> v;
+    v.gather(s.solver_bodies, c);
+    fn(c, View::points(s, stored), View::inertia(s, stored), v);
+    v.scatter(s.solver_bodies, c);
+  }
+}
+
 // Friction outside the cone, lane by lane (friction_update's slow branch): kinetic friction against the
 // slip the point had when the step began, or the cone's nearest impulse in the tangent mass's metric.
 // (Out of line and by reference: the rare path, and plain scalar code whatever the lanes.)
@@ -212,20 +227,15 @@ struct WidePass {
   // The pass over s.wide[begin, end).
   template <class LT>
   [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
-    using View = LaneView<N, LT>;
     using W = typename LT::W;
     using M = typename LT::M;
-    for (int i = begin; i < end; ++i) {
-      const WideConstraint<N>& stored = s.wide[i];
-      const auto& c = View::constraint(stored);
-      WideVelocities<N, W> v;
-      v.gather(s.solver_bodies, c);
-      auto* points = View::points(s, stored);
-      const auto* inertia = View::inertia(s, stored);
+    // (Forced inline, as every lane operation: a call would pass the lanes through memory.)
+    const auto pass = [this](const auto& c, auto* points, const auto* inertia, auto& v)
+                          __attribute__((always_inline)) {
       for (int k = 0; k < c.count; ++k) normal<W, M>(c, points[k], v);
       for (int k = 0; k < c.count; ++k) friction<W, M>(c, inertia, points[k], v);
-      v.scatter(s.solver_bodies, c);
-    }
+    };
+    visit_lanes<N, LT>(s, begin, end, pass);
   }
 };
 
@@ -234,15 +244,8 @@ template <int N>
 struct WarmStart {
   template <class LT>
   [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
-    using View = LaneView<N, LT>;
     using W = typename LT::W;
-    for (int i = begin; i < end; ++i) {
-      const WideConstraint<N>& stored = s.wide[i];
-      const auto& c = View::constraint(stored);
-      WideVelocities<N, W> v;
-      v.gather(s.solver_bodies, c);
-      auto* points = View::points(s, stored);
-      const auto* inertia = View::inertia(s, stored);
+    const auto warm = [](const auto& c, auto* points, const auto* inertia, auto& v) __attribute__((always_inline)) {
       for (int k = 0; k < c.count; ++k) {
         auto& p = points[k];
         p.normal_total += p.normal_impulse;
@@ -250,8 +253,8 @@ struct WarmStart {
         for (int d = 0; d < N; ++d) j[d] = p.normal_impulse * c.normal[d] + p.tangent_impulse[d];
         apply_wide_impulse(c, inertia, p.ra, p.rb, j, v);
       }
-      v.scatter(s.solver_bodies, c);
-    }
+    };
+    visit_lanes<N, LT>(s, begin, end, warm);
   }
 };
 
