@@ -7,10 +7,11 @@
 // constraint's last point, has no mass and takes no impulse. Velocities are gathered into lanes once
 // per constraint and pass, and written back once.
 //
-// A Wide is P packs of two doubles, GCC's generic 16-byte vectors (also Clang's; one SSE2 register on
-// baseline x86-64, NEON elsewhere), and every lane is plain IEEE double arithmetic, so the results do
-// not depend on the instruction set. The lanes a constraint goes to are fixed by the colour order
-// alone, so the results do not depend on the worker count either.
+// A Wide is P packs of L doubles, GCC's generic vectors (also Clang's): stored as 16-byte packs (one SSE2
+// register on baseline x86-64, NEON elsewhere), and read as 32-byte packs by the AVX2 kernels
+// (lanes.hpp, lanes_avx2.cpp). Every lane is plain IEEE double arithmetic, so the results do not depend
+// on the instruction set. The lanes a constraint goes to are fixed by the colour order alone, so the
+// results do not depend on the worker count either.
 #pragma once
 
 #include <cstdint>
@@ -21,8 +22,9 @@ namespace wedge::contact {
 
 // Lanes come in packs of two doubles (one SSE2 register); a Wide is P of them. Two packs give the
 // processor twice the independent chains per instruction (GCC's own 32-byte vectors, lowered to SSE2,
-// went through memory lane by lane and stalled on the store buffer); from 4D on, two packs of a
-// body's velocities no longer fit the registers and one is faster (kPacks).
+// went through memory lane by lane and stalled on the store buffer; compiled for AVX2 they are native,
+// LaneTypes<N, 4>); from 4D on, two packs of a body's velocities no longer fit the registers and one
+// is faster (kLanes).
 // Every operation is forced inline: one left as a call passes its packs through memory.
 #define WEDGE_WIDE_INLINE [[gnu::always_inline]] inline
 
