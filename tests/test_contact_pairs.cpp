@@ -1,11 +1,14 @@
 // Contact pairs and events (core/src/contact/pairs.cpp): what a step reports after it (begin and end
 // events with impulse, point and approach speed, checked against the impulse-momentum balance), and
-// determinism of the whole contact pipeline (bit-identical states, also from a copied world).
+// determinism of the whole contact pipeline (bit-identical states, also from a copied world); the
+// effective masses a recycled pair takes from the last step against those formed afresh.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
 
 #include "builders.hpp"
+#include "contact/contact_system.hpp"
+#include "wedge/ga/exp_log.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/world.hpp"
 
@@ -165,4 +168,92 @@ TEST_CASE("a plank under 40 boxes (more constraints than colours) holds them all
   World<2> again = make();
   for (int i = 0; i < 180; ++i) again.step(1.0 / 60.0);
   CHECK(again.state_hash() == w.state_hash());
+}
+
+TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afresh, to the bit (2D-4D)",
+                       "[contact][recycling]", ((int N), N), 2, 3, 4) {
+  // Straight on the contact pipeline: a ground, two cubes stacked (isotropic inertia) and a cuboid
+  // (not, from 3D on), nudged below the recycling limits between calls of find_contacts, so their
+  // manifolds are recycled. Every point's effective masses and Jacobian rows, copied from the last step
+  // or formed, must equal the bits build_constraint's formulas give from this step's bodies; once a
+  // cube's mass changes, and whenever the cuboid turns, that takes forming them again.
+  std::vector<Body<N>> bodies;
+  contact::Shapes<N> shapes;
+  std::vector<Material> materials;
+  const auto add = [&](std::shared_ptr<const Shape<N>> shape, BodyType type, const Vec<N>& at) {
+    BodyDef<N> def = type == BodyType::Static ? BodyDef<N>{} : body_def<N>(shape, 1000.0);
+    def.shape = shape;
+    def.type = type;
+    def.position = at;
+    bodies.push_back(make_body(def));
+    shapes.push_back(shape);
+    materials.push_back(def.material);
+  };
+  add(std::make_shared<const Shape<N>>(Shape<N>::halfspace(Vec<N>::Unit(1), 0.0)), BodyType::Static, Vec<N>::Zero());
+  const auto cube = std::make_shared<const Shape<N>>(Shape<N>::box(Vec<N>::Constant(0.5)));
+  add(cube, BodyType::Dynamic, 0.499 * Vec<N>::Unit(1));
+  add(cube, BodyType::Dynamic, 1.497 * Vec<N>::Unit(1));
+  Vec<N> half = Vec<N>::Constant(0.4);
+  half[0] = 0.7;
+  half[1] = 0.3;
+  add(std::make_shared<const Shape<N>>(Shape<N>::box(half)), BodyType::Dynamic,
+      Vec<N>(3.0 * Vec<N>::Unit(0) + 0.299 * Vec<N>::Unit(1)));
+  const bool cuboid_isotropic = N == 2;  // (in 2D every inertia is a single number)
+
+  contact::ContactState<N> s;
+  for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, shapes, i);
+  const ContactSettings settings;
+  int eligible_count = 0;  // cube pairs whose masses may be copied (recycled, isotropic bodies)
+  double cube_mass_before = 0.0;
+  for (int round = 0; round < 12; ++round) {
+    contact::find_contacts(s, bodies, shapes, materials, settings, 1.0 / 60.0);
+    REQUIRE(s.constraints.size() == 3);  // ground-cube, cube-cube, ground-cuboid
+    for (const contact::Constraint<N>& c : s.constraints) {
+      const contact::Pair<N>& p = s.pairs[c.pair];
+      const contact::SolverBody<N>& a = s.solver_bodies[c.a];
+      const contact::SolverBody<N>& b = s.solver_bodies[c.b];
+      const bool eligible = p.recycled && p.previous_first >= 0 && a.isotropic && b.isotropic;
+      if (round > 0) CHECK(p.recycled);  // nudges below the limits
+      if (c.b == 3) {
+        CHECK(eligible == (round > 0 && cuboid_isotropic));  // the turned cuboid's inertia turns with it
+      } else if (eligible) {
+        ++eligible_count;
+      }
+      for (int k = 0; k < c.count; ++k) {
+        const contact::PointConstraint<N>& q = s.points[c.first + k];
+        contact::PointConstraint<N> e;
+        contact::set_effective_masses(e,
+                                      Mat<N>((a.inv_mass + b.inv_mass) * Mat<N>::Identity() +
+                                             contact::angular_mass_term(a, p.arm_a[k]) +
+                                             contact::angular_mass_term(b, p.arm_b[k])),
+                                      c.normal);
+        const auto jn_a = outer<N>(p.arm_a[k], c.normal).c, jn_b = outer<N>(p.arm_b[k], c.normal).c;
+        REQUIRE(q.normal_mass == e.normal_mass);
+        REQUIRE(q.tangent_mass == e.tangent_mass);
+        REQUIRE(q.kn == e.kn);
+        REQUIRE(q.jn_a == jn_a);
+        REQUIRE(q.jn_b == jn_b);
+        REQUIRE(q.dn_a == contact::inverse_inertia_times(a, jn_a));
+        REQUIRE(q.dn_b == contact::inverse_inertia_times(b, jn_b));
+      }
+      if (c.a == 0 && c.b == 1 && round == 5) cube_mass_before = s.points[c.first].normal_mass;
+      if (c.a == 0 && c.b == 1 && round == 6) {
+        // Twice the mass: the ground contact's normal mass (the cube's alone) doubles, to rounding. (Had
+        // the last step's masses been copied over the change, the bit checks above would have failed.)
+        CHECK(s.points[c.first].normal_mass == Approx(2.0 * cube_mass_before).epsilon(1e-12));
+      }
+    }
+    // The nudges, each well below recycle_distance (5 cm) and recycle_angle (0.2 rad).
+    bodies[2].center[0] += 1e-4;
+    Bivector<N> turn{};
+    turn.c[0] = 1e-3;  // e01
+    bodies[3].rotor = wedge::exp(turn) * bodies[3].rotor;
+    if (round == 5) {
+      bodies[1].mass *= 2.0;
+      bodies[1].inv_mass *= 0.5;
+      bodies[1].inv_inertia *= 0.5;
+    }
+  }
+  // Both cube pairs (ground-cube, cube-cube) in rounds 1-11: the path under test ran.
+  CHECK(eligible_count == 22);
 }

@@ -39,6 +39,14 @@ struct Pair {
   bool touching = false;   // received a normal impulse or penetrated in the last step
   bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
   int constraint = -1;     // index of its constraint in this step, or -1
+  // Where its points are in ContactState::points (this step) and previous_points (the last step), or
+  // -1; recycled: this step's manifold is the last step's carried along (recycling.cpp), so a point's
+  // normal, lever arms and, for bodies whose inertia is isotropic, effective masses are the same, and
+  // build_constraint takes them from the last step's point. mass_key: the bodies' 1/m and isotropic
+  // 1/I those masses were formed with.
+  int points_first = -1, previous_first = -1;
+  bool recycled = false;
+  std::array<double, 4> mass_key{};
   // Warm start: the contact-stage impulses of the last step per feature id, given back to the points
   // that continue them (same id, or same place), so the iterations start from last step's answer,
   int warm_count = 0;
@@ -205,6 +213,7 @@ struct ContactState {
   // for the paper's solver, whose constraints are in pair order).
   std::vector<int> colour_start;
   std::vector<PointConstraint<N>> points;
+  std::vector<PointConstraint<N>> previous_points;  // the last step's points (Pair::previous_first)
   // Soft step: the constraints in lanes (wide.hpp), colour by colour; wide_start as colour_start.
   std::vector<WideConstraint<N>> wide;
   std::vector<WidePoint<N>> wide_points;
