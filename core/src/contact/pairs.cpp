@@ -314,7 +314,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
                                        : nullptr;
   for (int k = 0; k < c.count; ++k) {
     const ContactPoint<N>& cp = p.manifold.points[k];
-    PointConstraint<N> q;
+    PointConstraint<N>& q = s.points[c.first + k];  // (fresh: build_constraints resized the array)
     q.ra = p.arm_a[k];
     q.rb = p.arm_b[k];
     if (last) {
@@ -350,7 +350,6 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
       q.warm_normal = p.warm_normal[w];
       q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
     }
-    s.points[c.first + k] = q;
   }
   p.constraint = index;
   p.points_first = first;
