@@ -106,12 +106,20 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
       m.b[i] = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_inertia.data()[i] : 0.0; });
     }
   }
+  // A lane without a point reads one whose every field is zero (no test per field and lane).
+  static const PointConstraint<N> none = [] {
+    PointConstraint<N> z;
+    z.jn_a.setZero();
+    z.jn_b.setZero();
+    z.dn_a.setZero();
+    z.dn_b.setZero();
+    z.tangent_mass.setZero();
+    return z;
+  }();
   for (int k = 0; k < w.count; ++k) {
     const PointConstraint<N>* p[kLanes<N>];
-    for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : nullptr;
-    const auto lanes = [&](auto field) {
-      return make_wide<Wide<N>>([&](int l) { return p[l] ? field(*p[l]) : 0.0; });
-    };
+    for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : &none;
+    const auto lanes = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return field(*p[l]); }); };
     WidePoint<N>& q = s.wide_points[w.first + k];
     q.separation = lanes([](const PointConstraint<N>& x) { return x.separation; });
     q.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });
