@@ -306,7 +306,8 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
   warm_matches(p, bodies[c.a].center, match_distance, match);
   // A recycled manifold keeps its normal and lever arms; with isotropic bodies of the same masses the
   // effective masses and Jacobian rows are then those of the last step, to the bit (the same function
-  // of the same numbers), and are copied rather than formed again (a fifth of a resting pile's step).
+  // of the same numbers), and are copied rather than formed again (an eighth of the instructions of a
+  // resting pyramid of cubes).
   const std::array<double, 4> key{sa.inv_mass, sa.iso_inv_inertia, sb.inv_mass, sb.iso_inv_inertia};
   const PointConstraint<N>* last = p.recycled && p.previous_first >= 0 && sa.isotropic && sb.isotropic &&
                                            key == p.mass_key
