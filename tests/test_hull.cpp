@@ -6,7 +6,6 @@
 // volumes 1e-12 relative (a few hundred O(1) determinants).
 #include <unistd.h>
 
-#include <Eigen/LU>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "dense.hpp"
 #include "wedge/error.hpp"
 #include "wedge/hull.hpp"
 #include "test_util.hpp"
@@ -153,7 +153,7 @@ TEMPLATE_TEST_CASE("Hull of the cross-polytope and of a simplex", "[hull]", D2, 
   check_hull_contract<N>(s, simplex);
   CHECK(s.mesh.cells.size() == std::size_t(N + 1));
   CHECK(s.mesh.vertices.size() == std::size_t(N + 1));
-  CHECK(wedge::signed_volume(s.mesh) == Approx(std::abs(e.determinant()) / factorial(N)).epsilon(1e-12));
+  CHECK(wedge::signed_volume(s.mesh) == Approx(std::abs(det(e)) / factorial(N)).epsilon(1e-12));
   CHECK(wedge::convex_hull_mesh<N>(simplex).cells == s.mesh.cells);
 }
 
@@ -171,7 +171,7 @@ TEMPLATE_TEST_CASE("Hull of random points: contains every point, cells on facets
     // The hull contains the simplex of any N+1 input points.
     Mat<N> e;
     for (int j = 0; j < N; ++j) e.col(j) = pts[std::size_t(j + 1)] - pts[0];
-    CHECK(wedge::signed_volume(hull.mesh) >= std::abs(e.determinant()) / factorial(N));
+    CHECK(wedge::signed_volume(hull.mesh) >= std::abs(det(e)) / factorial(N));
   }
 }
 

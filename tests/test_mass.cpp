@@ -22,8 +22,6 @@
 //     0.97 -> 0.70 in inertia).
 //   Monte Carlo: |exact - estimate| <= 5 standard errors (fixed seeds), plus 1e-10 of the scale for
 //     entries that vanish identically.
-#include <Eigen/LU>
-#include <Eigen/QR>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -31,6 +29,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "dense.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
 #include "wedge/hull.hpp"
@@ -79,9 +78,7 @@ Mat<N> random_rotation(std::mt19937_64& rng) {
   Mat<N> a;
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j) a(i, j) = g(rng);
-  Mat<N> q = Eigen::HouseholderQR<Mat<N>>(a).householderQ();
-  if (q.determinant() < 0.0) q.col(0) = -q.col(0);
-  return q;
+  return dense::haar_rotation(a);
 }
 
 template <int N>
@@ -121,10 +118,12 @@ double inscribed_radius(const SimplexMesh<N>& m) {
   for (const auto& c : m.cells) {
     Mat<N> vm;
     for (int j = 0; j < N; ++j) vm.col(j) = m.vertices[std::size_t(c[j])];
-    REQUIRE(vm.determinant() > 0.0);
+    REQUIRE(det(vm) > 0.0);
     Eigen::Matrix<double, N - 1, N> e;
     for (int j = 1; j < N; ++j) e.row(j - 1) = (vm.col(j) - vm.col(0)).transpose();
-    const Vec<N> n = Eigen::FullPivLU<Eigen::Matrix<double, N - 1, N>>(e).kernel().col(0).normalized();
+    Eigen::VectorXd kernel;
+    REQUIRE(dense::kernel_vector(e, kernel));
+    const Vec<N> n = kernel;
     rho = std::min(rho, std::abs(n.dot(vm.col(0))));
   }
   return rho;
@@ -475,7 +474,7 @@ TEMPLATE_TEST_CASE("Translation moves the centre only, rotation gives I' = [Q]_2
 
   for (int trial = 0; trial < 3; ++trial) {
     const Mat<N> q = random_rotation<N>(rng);
-    REQUIRE(q.determinant() == Approx(1.0));
+    REQUIRE(det(q) == Approx(1.0));
     const MassProperties<N> pr = wedge::mass_properties<N>(transformed<N>(mesh, q, Vec<N>::Zero()), density);
     const BivMat<N> q2 = wedge::bivector_matrix<N>(q);
     CHECK(std::abs(pr.mass - p.mass) <= kExact * p.mass);
@@ -543,7 +542,7 @@ TEMPLATE_TEST_CASE("Principal frame of a rotated, translated box mesh: the box's
   const wedge::PrincipalFrame<N> f = wedge::principal_frame<N>(p);
 
   CHECK((f.center - t).norm() <= kExact * t.norm());
-  CHECK(f.axes.determinant() == Approx(1.0).epsilon(1e-12));
+  CHECK(det(f.axes) == Approx(1.0).epsilon(1e-12));
   CHECK((f.axes.transpose() * f.axes - Mat<N>::Identity()).cwiseAbs().maxCoeff() <= 1e-12);
   // Each principal axis is +-one column of q; perm[j] = which.
   std::vector<int> perm(N, -1);
@@ -582,7 +581,7 @@ TEMPLATE_TEST_CASE("Principal frame: identity for axis-aligned bodies, diagonal 
   const auto p = wedge::mass_properties<N>(Shape<N>::polytope(random_points<N>(rng, 3 * N + 2)), 2.0);
   const auto g = wedge::principal_frame<N>(p);
   CHECK(g.inertia.isDiagonal(0.0));
-  CHECK(g.axes.determinant() == Approx(1.0).epsilon(1e-12));
+  CHECK(det(g.axes) == Approx(1.0).epsilon(1e-12));
   // The covariance in the frame is diag(g.covariance), and its inertia is g.inertia.
   const Mat<N> cf = g.axes.transpose() * p.covariance * g.axes;
   CHECK(rel_diff(cf, Mat<N>(g.covariance.asDiagonal())) <= 1e-12);

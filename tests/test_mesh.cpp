@@ -4,12 +4,12 @@
 // Tolerances: box coordinates are exact (grid values h (2g - s)/s are symmetric and the surface test
 // compares with h itself); volumes 1e-12 relative (sums of a few thousand O(1) determinants); points
 // of round meshes lie on spheres to 1e-14 relative (one scaling by |x|_inf/|x|_2).
-#include <Eigen/LU>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <type_traits>
 #include <vector>
 
+#include "dense.hpp"
 #include "wedge/error.hpp"
 #include "wedge/mesh.hpp"
 #include "test_util.hpp"
@@ -33,7 +33,7 @@ template <int N>
 double det_from_origin(const SimplexMesh<N>& m, const std::array<int, N>& c) {
   Mat<N> a;
   for (int j = 0; j < N; ++j) a.col(j) = m.vertices[std::size_t(c[j])];
-  return a.determinant();
+  return det(a);
 }
 
 // The surface of a tetrahedron, oriented outward here (the fixture does not use the library).
@@ -44,7 +44,7 @@ SimplexMesh<3> tetrahedron() {
   for (std::array<int, 3> f : {std::array<int, 3>{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}) {
     Mat<3> a;
     for (int j = 0; j < 3; ++j) a.col(j) = m.vertices[std::size_t(f[std::size_t(j)])] - c;
-    if (a.determinant() < 0) std::swap(f[0], f[1]);
+    if (det(a) < 0) std::swap(f[0], f[1]);
     m.cells.push_back(f);
   }
   return m;
@@ -243,7 +243,7 @@ TEST_CASE("validate: every kind of broken mesh is refused with a message naming 
     for (std::array<int, 3> f : {std::array<int, 3>{1, base, base + 1}, {0, base, base + 1}, {0, 1, base + 1}, {0, 1, base}}) {
       Mat<3> a;
       for (int j = 0; j < 3; ++j) a.col(j) = m.vertices[std::size_t(f[std::size_t(j)])] - c;
-      if (a.determinant() < 0) std::swap(f[0], f[1]);
+      if (det(a) < 0) std::swap(f[0], f[1]);
       m.cells.push_back(f);
     }
     REQUIRE_THROWS_WITH(wedge::validate(m), Catch::Contains("non-manifold mesh: 1-face {0, 1} is shared by 4 cells"));

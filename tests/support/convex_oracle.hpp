@@ -9,8 +9,6 @@
 // exact separating-axis test (box_sat), fast enough for 6D where the 4096-point hull is slow.
 #pragma once
 
-#include <Eigen/LU>
-#include <Eigen/QR>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -18,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "dense.hpp"
 #include "wedge/ga/types.hpp"
 #include "wedge/hull.hpp"
 
@@ -44,13 +43,7 @@ template <int N>
 Mat<N> rotation(std::mt19937_64& rng) {
   Mat<N> g;
   for (int j = 0; j < N; ++j) g.col(j) = gaussian<N>(rng);
-  Eigen::HouseholderQR<Mat<N>> qr(g);
-  Mat<N> q = qr.householderQ();
-  const Mat<N> r = qr.matrixQR().template triangularView<Eigen::Upper>();
-  for (int j = 0; j < N; ++j)
-    if (r(j, j) < 0) q.col(j) = -q.col(j);
-  if (q.determinant() < 0) q.col(0) = -q.col(0);
-  return q;
+  return dense::haar_rotation(g);
 }
 
 // The convex hull of points, as a support function (the first maximiser wins ties).
@@ -169,9 +162,8 @@ double brute_distance(const wedge::ConvexHull<N>& hull) {
       kkt.block(k, 0, 1, k).setOnes();
       Eigen::VectorXd rhs = Eigen::VectorXd::Zero(k + 1);
       rhs[k] = 1.0;
-      Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
-      if (lu.rank() < k + 1) continue;
-      const Eigen::VectorXd sol = lu.solve(rhs);
+      Eigen::VectorXd sol;
+      if (!dense::solve_invertible(kkt, rhs, sol)) continue;
       if (sol.head(k).minCoeff() < -1e-12) continue;
       best = std::min(best, (p * sol.head(k)).norm());
     }
@@ -196,9 +188,9 @@ double box_sat(const BoxSupport<N>& a, const BoxSupport<N>& b, Vec<N>* normal = 
     Eigen::Matrix<double, N - 1, N> m;
     for (int i = 0, row = 0; i < 2 * N; ++i)
       if (mask & (1u << i)) m.row(row++) = axes[i].transpose();
-    Eigen::FullPivLU<Eigen::Matrix<double, N - 1, N>> lu(m);
-    if (lu.rank() < N - 1) continue;
-    const Vec<N> n = Vec<N>(lu.kernel().col(0)).normalized();
+    Eigen::VectorXd kernel;
+    if (!dense::kernel_vector(m, kernel)) continue;
+    const Vec<N> n = kernel;
     for (const double sign : {1.0, -1.0}) {
       const Vec<N> d = sign * n;
       double h = d.dot(a.centre - b.centre);

@@ -1,5 +1,7 @@
 #include "oracles.hpp"
 
+#include "dense.hpp"
+
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -373,13 +375,7 @@ Eigen::MatrixXd random_rotation(int n, std::mt19937_64& rng) {
   Eigen::MatrixXd m(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) m(i, j) = g(rng);
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
-  Eigen::MatrixXd q = qr.householderQ();
-  const Eigen::MatrixXd r = qr.matrixQR().triangularView<Eigen::Upper>();
-  for (int j = 0; j < n; ++j)
-    if (r(j, j) < 0.0) q.col(j) = -q.col(j);
-  if (q.determinant() < 0.0) q.col(0) = -q.col(0);
-  return q;
+  return dense::haar_rotation(m);
 }
 
 Points random_points_in_ball(int n, int count, double radius, const Point& centre, std::mt19937_64& rng) {

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "dense.hpp"
 #include "wedge/hull.hpp"
 #include "wedge/mesh.hpp"
 #include "wedge/slicing/display_mesh.hpp"
@@ -68,7 +69,7 @@ double inner_radius(const wedge::SimplexMesh<N>& m) {
     const Vec<N> v0 = m.vertices[std::size_t(c[0])];
     Eigen::Matrix<double, N, N - 1> e;
     for (int j = 1; j < N; ++j) e.col(j - 1) = m.vertices[std::size_t(c[std::size_t(j)])] - v0;
-    const Eigen::Matrix<double, N - 1, 1> coef = e.colPivHouseholderQr().solve(-v0);
+    const Eigen::VectorXd coef = dense::least_squares(e, -v0);
     best = std::min(best, (v0 + e * coef).norm());
   }
   return best;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/LU>  // determinant()
+
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
 
