@@ -102,6 +102,12 @@ struct SolverBody {
   Mat<N> r0_inverse = Mat<N>::Identity();
   Vec<N> dp = Vec<N>::Zero();
   Mat<N> dq = Mat<N>::Identity();
+  // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
+  // next sub-step (soft_step.cpp, warm_start_substep), and the velocities before the current pass.
+  Vec<N> warm_v = Vec<N>::Zero();
+  Bivector<N> warm_w{};
+  Vec<N> pass_v = Vec<N>::Zero();
+  Bivector<N> pass_w{};
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
@@ -221,6 +227,7 @@ struct ContactState {
   std::vector<int> wide_start, wide_scratch;
   Lanes lanes = default_lanes();  // the lane kernels' instruction set (the same bits either way)
   double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
+  int substep = 0;  // soft step: the sub-steps begun in this step
   std::vector<int> shock_order;  // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
 
@@ -375,9 +382,12 @@ void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, cons
 template <int N>
 void pack_wide(ContactState<N>& state);
 // One solve (use_bias) or relax pass of the contacts over the packed lanes, and the lanes' impulses back
-// to the points (run by solve_substep and finish_soft_step; declared for the tests).
+// to the points (run by solve_substep and finish_soft_step; declared for the tests). count_warm_start:
+// each point's normal_total first takes its accumulated impulse, which the sub-step's warm start applied
+// body by body without visiting the point.
 template <int N>
-void solve_contacts(ContactState<N>& state, const ContactSettings& settings, double h, bool use_bias);
+void solve_contacts(ContactState<N>& state, const ContactSettings& settings, double h, bool use_bias,
+                    bool count_warm_start = false);
 template <int N>
 void unpack_wide(ContactState<N>& state);
 // islands.cpp

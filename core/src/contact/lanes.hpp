@@ -151,10 +151,12 @@ struct WidePass {
   static constexpr int K = kBiv<N>;
   double inv_h, push_speed, bias_scale, mass_scale, impulse_scale;
   bool use_bias;
+  bool count_warm_start;  // normal_total takes the warm-start impulse first (solve_contacts)
 
   template <class W, class M>
   [[gnu::always_inline]] void normal(const WideConstraintT<N, W>& c, WidePointT<N, W>& p,
                                      WideVelocities<N, W>& v) const {
+    if (count_warm_start) p.normal_total += p.normal_impulse;
     const W sep = p.separation;
     const M apart = sep > 0.0;  // speculative: may close the gap within the sub-step, no more
     W bias = sep * inv_h, ms = splat<W>(1.0), is = splat<W>(0.0);
