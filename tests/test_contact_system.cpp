@@ -483,7 +483,8 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
       for (const contact::Constraint<N>& c : s.constraints)
         for (int k = 0; k < c.count; ++k) {
           const contact::PointConstraint<N>& p = s.points[c.first + k];
-          contact::apply_impulse(expected[c.a], expected[c.b], p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+          const Vec<N> j = p.normal_impulse * c.normal + p.tangent_impulse;
+          contact::apply_impulse(expected[c.a], expected[c.b], p, j);
         }
       double scale = 0.0;
       for (const auto& b : expected) scale = std::max({scale, b.v.cwiseAbs().maxCoeff(), b.w.c.cwiseAbs().maxCoeff()});

@@ -396,7 +396,7 @@ Lanes default_lanes() {
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
   template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);       \
   template void pack_wide<N>(ContactState<N>&);                                                              \
-  template void solve_contacts<N>(ContactState<N>&, const ContactSettings&, double, bool, bool);                  \
+  template void solve_contacts<N>(ContactState<N>&, const ContactSettings&, double, bool, bool);            \
   template void unpack_wide<N>(ContactState<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
