@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "contact_bodies.hpp"
 #include "builders.hpp"
 #include "contact/contact_system.hpp"
 #include "wedge/ga/exp_log.hpp"
@@ -177,35 +178,25 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
   // manifolds are recycled. Every point's effective masses and Jacobian rows, copied from the last step
   // or formed, must equal the bits build_constraint's formulas give from this step's bodies; once a
   // cube's mass changes, and whenever the cuboid turns, that takes forming them again.
-  std::vector<Body<N>> bodies;
-  contact::Shapes<N> shapes;
-  std::vector<Material> materials;
-  const auto add = [&](std::shared_ptr<const Shape<N>> shape, BodyType type, const Vec<N>& at) {
-    BodyDef<N> def = type == BodyType::Static ? BodyDef<N>{} : body_def<N>(shape, 1000.0);
-    def.shape = shape;
-    def.type = type;
-    def.position = at;
-    bodies.push_back(make_body(def));
-    shapes.push_back(shape);
-    materials.push_back(def.material);
-  };
-  add(std::make_shared<const Shape<N>>(Shape<N>::halfspace(Vec<N>::Unit(1), 0.0)), BodyType::Static, Vec<N>::Zero());
+  ContactBodies<N> scene;
+  std::vector<Body<N>>& bodies = scene.bodies;
+  scene.add_ground();
   const auto cube = std::make_shared<const Shape<N>>(Shape<N>::box(Vec<N>::Constant(0.5)));
-  add(cube, BodyType::Dynamic, 0.499 * Vec<N>::Unit(1));
-  add(cube, BodyType::Dynamic, 1.497 * Vec<N>::Unit(1));
+  scene.add(cube, BodyType::Dynamic, 0.499 * Vec<N>::Unit(1));
+  scene.add(cube, BodyType::Dynamic, 1.497 * Vec<N>::Unit(1));
   Vec<N> half = Vec<N>::Constant(0.4);
   half[0] = 0.7;
   half[1] = 0.3;
-  add(std::make_shared<const Shape<N>>(Shape<N>::box(half)), BodyType::Dynamic,
+  scene.add(std::make_shared<const Shape<N>>(Shape<N>::box(half)), BodyType::Dynamic,
       Vec<N>(3.0 * Vec<N>::Unit(0) + 0.299 * Vec<N>::Unit(1)));
   const bool cuboid_isotropic = N == 2;  // (in 2D every inertia is a single number)
 
   contact::ContactState<N> s;
-  for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, shapes, i);
+  for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, scene.shapes, i);
   const ContactSettings settings;
   int eligible_count = 0;  // cube pairs whose masses may be copied (recycled, isotropic bodies)
   for (int round = 0; round < 12; ++round) {
-    contact::find_contacts(s, bodies, shapes, materials, settings, 1.0 / 60.0);
+    contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
     REQUIRE(s.constraints.size() == 3);  // ground-cube, cube-cube, ground-cuboid
     for (const contact::Constraint<N>& c : s.constraints) {
       const contact::Pair<N>& p = s.pairs[c.pair];

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "contact_bodies.hpp"
 #include "contact/contact_system.hpp"
 #include "contact/impulses.hpp"
 #include "wedge/ga/exp_log.hpp"
@@ -436,27 +437,17 @@ TEMPLATE_TEST_CASE_SIG("a pass in AVX2 lanes gives the bits of a pass in SSE2 la
 TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point's impulse applied point by point "
                        "(2D-4D)",
                        "[contact][solver_algebra]", ((int N), N), 2, 3, 4) {
-  std::vector<Body<N>> bodies;
-  contact::Shapes<N> shapes;
-  std::vector<Material> materials;
-  const auto add = [&](std::shared_ptr<const Shape<N>> shape, BodyType type, const Vec<N>& at) {
-    BodyDef<N> def = type == BodyType::Static ? BodyDef<N>{} : body_def<N>(shape, 1000.0);
-    def.shape = shape;
-    def.type = type;
-    def.position = at;
-    bodies.push_back(make_body(def));
-    shapes.push_back(shape);
-    materials.push_back(def.material);
-  };
-  add(std::make_shared<const Shape<N>>(Shape<N>::halfspace(Vec<N>::Unit(1), 0.0)), BodyType::Static, Vec<N>::Zero());
+  ContactBodies<N> scene;
+  std::vector<Body<N>>& bodies = scene.bodies;
+  scene.add_ground();
   const auto cube = std::make_shared<const Shape<N>>(Shape<N>::box(Vec<N>::Constant(0.5)));
   Vec<N> half = Vec<N>::Constant(0.4);
   half[0] = 0.9;
   half[1] = 0.3;
-  add(std::make_shared<const Shape<N>>(Shape<N>::box(half)), BodyType::Dynamic, 0.299 * Vec<N>::Unit(1));
-  add(cube, BodyType::Dynamic, Vec<N>(0.3 * Vec<N>::Unit(0) + 1.098 * Vec<N>::Unit(1)));
-  add(cube, BodyType::Dynamic, Vec<N>(0.4 * Vec<N>::Unit(0) + 2.097 * Vec<N>::Unit(1)));
-  add(cube, BodyType::Dynamic, Vec<N>(3.0 * Vec<N>::Unit(0) + 0.499 * Vec<N>::Unit(1)));
+  scene.add(std::make_shared<const Shape<N>>(Shape<N>::box(half)), BodyType::Dynamic, 0.299 * Vec<N>::Unit(1));
+  scene.add(cube, BodyType::Dynamic, Vec<N>(0.3 * Vec<N>::Unit(0) + 1.098 * Vec<N>::Unit(1)));
+  scene.add(cube, BodyType::Dynamic, Vec<N>(0.4 * Vec<N>::Unit(0) + 2.097 * Vec<N>::Unit(1)));
+  scene.add(cube, BodyType::Dynamic, Vec<N>(3.0 * Vec<N>::Unit(0) + 0.499 * Vec<N>::Unit(1)));
   for (std::size_t i = 1; i < bodies.size(); ++i) {
     bodies[i].velocity = Vec<N>::Zero();
     bodies[i].velocity[0] = 0.05 * double(i);
@@ -464,10 +455,10 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
     bodies[i].angular_velocity.c[0] = 0.2 - 0.1 * double(i);
   }
   contact::ContactState<N> s;
-  for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, shapes, i);
+  for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, scene.shapes, i);
   const ContactSettings settings;
   const double h = 1.0 / 60.0 / settings.substeps;
-  contact::find_contacts(s, bodies, shapes, materials, settings, 1.0 / 60.0);
+  contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
   REQUIRE(s.constraints.size() == 4);
   contact::prepare_soft_step(s, bodies, settings, h);
   std::vector<double> summed(s.points.size(), 0.0);  // each point's impulse, summed over the sub-steps
