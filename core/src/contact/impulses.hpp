@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cmath>
-#include <Eigen/Cholesky>
 
 #include "contact/contact_system.hpp"
 
@@ -46,37 +45,10 @@ inline void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const Point
 // KKT: (M + lambda 1) j = M j*, i.e. j(lambda) = (1 + lambda T)^-1 j* with T = M^-1 (tangent_mass), and
 // lambda >= 0 where |j(lambda)| = limit: Newton on 1/|j(lambda)| - 1/limit, which is concave and
 // increasing, converges from lambda = 0 monotonically (the trust-region secular equation).
+// (Compiled once, in cone.cpp: the rare slow path, and its LLT for N = 2..6 had been compiled again in
+// every file that includes this one.)
 template <int N>
-[[gnu::noinline]] Vec<N> project_to_cone(const Mat<N>& tangent_mass, const Vec<N>& n, const Vec<N>& unconstrained,
-                                         double limit) {
-  const double norm0 = unconstrained.norm();
-  if (limit <= 0.0) return Vec<N>::Zero();
-  Vec<N> j = unconstrained * (limit / norm0);  // (the radial answer: exact when M is isotropic)
-  if (tangent_mass.isZero(0.0)) return j;
-  double lambda = 0.0;
-  for (int it = 0; it < 50; ++it) {
-    // x = (1 + lambda T)^-1 j* and dx = d x / d lambda = -(1 + lambda T)^-1 T x; at lambda = 0 (the first
-    // round) the matrix is the identity, so no factorisation is needed.
-    Vec<N> x = unconstrained, dx;
-    if (lambda > 0.0) {
-      const Eigen::LLT<Mat<N>> llt(Mat<N>::Identity() + lambda * tangent_mass);
-      x = llt.solve(unconstrained);
-      dx = -llt.solve(tangent_mass * x);
-    } else {
-      dx = -(tangent_mass * x);
-    }
-    const double len = x.norm();
-    if (!(len > 0.0)) break;
-    j = x;
-    if (std::abs(len - limit) <= 1e-13 * limit) break;
-    const double dpsi = -x.dot(dx) / (len * len * len);  // d (1/|x|) / d lambda > 0
-    if (!(dpsi > 0.0)) break;
-    lambda += (1.0 / limit - 1.0 / len) / dpsi;
-    if (!(lambda >= 0.0)) lambda = 0.0;
-  }
-  j -= n * n.dot(j);                 // (tangent to round-off; make it exactly so)
-  return j * (limit / j.norm());     // on the cone's surface
-}
+Vec<N> project_to_cone(const Mat<N>& tangent_mass, const Vec<N>& n, const Vec<N>& unconstrained, double limit);
 
 // The friction impulse a point should hold after a pass, given its tangential slip velocity: the
 // impulse that stops the slip if it lies in the cone |j_t| <= mu j_n (mu static or kinetic, chosen when

@@ -11,7 +11,6 @@
 // allows every point to close its gap exactly, u_n >= -max(g, 0)/h, and no more.
 #include <algorithm>
 #include <cmath>
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "contact/impulses.hpp"
