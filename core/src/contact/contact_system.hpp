@@ -82,7 +82,7 @@ template <int N>
 struct SolverBody {
   Vec<N> v = Vec<N>::Zero();
   Bivector<N> w{};
-  Vec<N> v0 = Vec<N>::Zero();  // velocities before the collision stage (its energy check)
+  Vec<N> v0 = Vec<N>::Zero();  // velocities before the stage (its energy check) or soft-step pass
   Bivector<N> w0{};
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
@@ -103,11 +103,9 @@ struct SolverBody {
   Vec<N> dp = Vec<N>::Zero();
   Mat<N> dq = Mat<N>::Identity();
   // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
-  // next sub-step (soft_step.cpp, warm_start_substep), and the velocities before the current pass.
+  // next sub-step (soft_step.cpp, warm_start_substep).
   Vec<N> warm_v = Vec<N>::Zero();
   Bivector<N> warm_w{};
-  Vec<N> pass_v = Vec<N>::Zero();
-  Bivector<N> pass_w{};
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the

@@ -83,6 +83,16 @@ void load_velocities(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   });
 }
 
+// v0, w0 = v, w for every body: what a stage (the paper's solver) or a pass (the soft step) starts from.
+template <int N>
+void snapshot_velocities(ContactState<N>& s) {
+  for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
+    SolverBody<N>& b = s.solver_bodies[i];
+    b.v0 = b.v;
+    b.w0 = b.w;
+  });
+}
+
 template <int N>
 void store_velocities(ContactState<N>& s, std::vector<Body<N>>& bodies) {
   for_each_body(s, int(bodies.size()), [&](int i) {

@@ -78,24 +78,15 @@ void for_each_wide(ContactState<N>& s, const Kernel& kernel) {
   }
 }
 
-// Before a contact pass: each moving body's velocities, to take what the pass changed (pass_change).
-template <int N>
-void mark_velocities(ContactState<N>& s) {
-  for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
-    SolverBody<N>& b = s.solver_bodies[i];
-    if (b.frozen) return;
-    b.pass_v = b.v;
-    b.pass_w = b.w;
-  });
-}
-// After it: warm_v = (first ? 0 : warm_v) + what the pass changed.
+// After a contact pass that began with snapshot_velocities: warm_v = (first ? 0 : warm_v) + what the
+// pass changed.
 template <int N>
 void pass_change(ContactState<N>& s, bool first) {
   for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
     SolverBody<N>& b = s.solver_bodies[i];
     if (b.frozen) return;
-    const Vec<N> dv = b.v - b.pass_v;
-    const Bivector<N> dw = b.w - b.pass_w;
+    const Vec<N> dv = b.v - b.v0;
+    const Bivector<N> dw = b.w - b.w0;
     b.warm_v = first ? dv : Vec<N>(b.warm_v + dv);
     b.warm_w = first ? dw : b.warm_w + dw;
   });
@@ -110,7 +101,7 @@ void pass_change(ContactState<N>& s, bool first) {
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
   if (s.substep == 0) {
-    mark_velocities(s);
+    snapshot_velocities(s);
     for_each_wide(s, WarmStart<N>{});
     pass_change(s, true);
     return;
@@ -345,7 +336,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   }
   if (grabs) solve_grabs(s);
   // (The grabs' impulses are left out of warm_v: they warm start on their own.)
-  mark_velocities(s);
+  snapshot_velocities(s);
   solve_contacts(s, settings, h, use_bias, use_bias && s.substep > 0);
   pass_change(s, false);
   if (use_bias) ++s.substep;

@@ -185,14 +185,6 @@ void correct_positions(ContactState<N>& s, const ContactSettings& settings, doub
 // group's kinetic energy rose, its velocity changes (equivalently, all its impulses) are scaled by the
 // alpha in [0, 1) that gives back the energy it had. Momentum is unchanged, and energy never rises.
 template <int N>
-void snapshot_velocities(ContactState<N>& s) {
-  for (SolverBody<N>& b : s.solver_bodies) {
-    b.v0 = b.v;
-    b.w0 = b.w;
-  }
-}
-
-template <int N>
 void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool restitutive_only) {
   const int n = int(bodies.size());
   s.union_parent.resize(n);
