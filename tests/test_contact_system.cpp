@@ -384,40 +384,38 @@ TEMPLATE_TEST_CASE_SIG("a pass over the lanes does what the scalar pass does, po
   CHECK(clamped > 10);  // the cone's slow path was exercised
 }
 
-// The passes in AVX2's 4-lane packs (2D, 3D) against the same passes in 2-lane packs: the lanes and the
-// operations are the same, so every bit must be (wide.hpp, LaneTypes; lanes_avx2.cpp).
-TEMPLATE_TEST_CASE_SIG("a pass in AVX2 lanes gives the bits of a pass in SSE2 lanes (2D, 3D)",
+// The passes in 4-lane packs, on AVX2 and on AVX-512 (2D, 3D), against the same passes in 2-lane packs:
+// the lanes and the operations are the same, so every bit must be (wide.hpp, LaneTypes; lanes_x86.cpp).
+TEMPLATE_TEST_CASE_SIG("a pass in AVX2 or AVX-512 lanes gives the bits of a pass in SSE2 lanes (2D, 3D)",
                        "[contact][solver_algebra][determinism]", ((int N), N), 2, 3) {
-#if WEDGE_AVX2_LANES
-  if (!__builtin_cpu_supports("avx2")) {
-    WARN("this CPU has no AVX2: nothing to compare");
+  const auto wide = GENERATE(contact::Lanes::Avx2, contact::Lanes::Avx512);
+  const char* name = wide == contact::Lanes::Avx2 ? "AVX2" : "AVX-512";
+  INFO(name);
+  if (!contact::lanes_supported(wide)) {
+    WARN("this CPU (or build) has no " << name << ": nothing to compare");
     return;
   }
-#else
-  WARN("AVX2 lanes are x86 only");
-  return;
-#endif
   std::mt19937 rng(170 + N);
   const ContactSettings settings;
   int differing_from_start = 0;
   for (int trial = 0; trial < 60; ++trial) {
     contact::ContactState<N> sse2 = random_pass_state<N>(rng, 3 + trial % 11, trial % 3);
     contact::pack_wide(sse2);
-    contact::ContactState<N> avx2 = sse2;
+    contact::ContactState<N> packed = sse2;
     sse2.lanes = contact::Lanes::Sse2;
-    avx2.lanes = contact::Lanes::Avx2;
+    packed.lanes = wide;
     const auto start = sse2.solver_bodies;
     for (const bool use_bias : {true, false, true}) {
       contact::solve_contacts(sse2, settings, 1.0 / 480.0, use_bias);
-      contact::solve_contacts(avx2, settings, 1.0 / 480.0, use_bias);
+      contact::solve_contacts(packed, settings, 1.0 / 480.0, use_bias);
     }
     INFO("trial " << trial);
-    REQUIRE(sse2.wide_points.size() == avx2.wide_points.size());
-    CHECK(std::memcmp(sse2.wide_points.data(), avx2.wide_points.data(),
+    REQUIRE(sse2.wide_points.size() == packed.wide_points.size());
+    CHECK(std::memcmp(sse2.wide_points.data(), packed.wide_points.data(),
                       sse2.wide_points.size() * sizeof(contact::WidePoint<N>)) == 0);
     for (std::size_t i = 0; i < sse2.solver_bodies.size(); ++i) {
-      CHECK(std::memcmp(sse2.solver_bodies[i].v.data(), avx2.solver_bodies[i].v.data(), sizeof(double) * N) == 0);
-      CHECK(std::memcmp(sse2.solver_bodies[i].w.c.data(), avx2.solver_bodies[i].w.c.data(),
+      CHECK(std::memcmp(sse2.solver_bodies[i].v.data(), packed.solver_bodies[i].v.data(), sizeof(double) * N) == 0);
+      CHECK(std::memcmp(sse2.solver_bodies[i].w.c.data(), packed.solver_bodies[i].w.c.data(),
                         sizeof(double) * kBiv<N>) == 0);
       if (sse2.solver_bodies[i].v != start[i].v) ++differing_from_start;
     }

@@ -189,12 +189,16 @@ struct GrabConstraint {
 
 // Everything the contact stages keep between and during steps. Plain data: the stages are free
 // functions, one file per group (see the top of this file).
-// The instruction set of the soft step's lane kernels (wide.hpp): 2-lane packs (SSE2, or NEON), or
-// 4-lane packs on AVX2 in 2D and 3D. Both give the same bits.
-enum class Lanes { Sse2, Avx2 };
-// Avx2 where the CPU has it, unless the environment variable WEDGE_SIMD is "sse2" ("avx2" or "auto":
-// the default; any other value is reported on stderr once and taken as "auto").
+// The instruction set of the soft step's lane kernels (wide.hpp): 2-lane packs (SSE2, or NEON), or in
+// 2D and 3D 4-lane packs on AVX2 or AVX-512 (the same packs, with twice the registers). All give the
+// same bits.
+enum class Lanes { Sse2, Avx2, Avx512 };
+// The best the CPU has, unless the environment variable WEDGE_SIMD asks for less: "sse2", "avx2",
+// "avx512" or "auto" (the default). A value the CPU cannot run, or any other value, is reported on
+// stderr once and the best the CPU has is used.
 Lanes default_lanes();
+// Whether this CPU (and build) can run the lanes l.
+bool lanes_supported(Lanes l);
 
 template <int N>
 struct ContactState {

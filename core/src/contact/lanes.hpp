@@ -1,9 +1,9 @@
 // The soft step's lane kernels (internal): the passes, the warm start and the sub-step separations
 // over a range of wide constraints (wide.hpp), templates on their lane types LT (LaneTypes).
-// soft_step.cpp runs them in 2-lane packs; lanes_avx2.cpp compiles them once more in 4-lane packs for
-// AVX2 (gnu::target, in that file alone), run where the CPU has it and the lanes allow (2D, 3D): the
-// same lanes and the same IEEE operations lane by lane, so the same bits (tested). Nothing else of
-// Wedge needs AVX, and Eigen's code and alignment stay those of the baseline build.
+// soft_step.cpp runs them in 2-lane packs; lanes_x86.cpp compiles them twice more in 4-lane packs, for
+// AVX2 and for AVX-512 (2D, 3D; gnu::target, in that file alone), run where the CPU has them: the same lanes and the same IEEE operations lane by lane, so the same bits
+// (tested). Nothing else of Wedge needs AVX, and Eigen's code and alignment stay those of the baseline
+// build.
 #pragma once
 
 #include <utility>
@@ -309,11 +309,14 @@ struct Separations {
   }
 };
 
-// kernel.run over s.wide[begin, end) in 4-lane packs, compiled for AVX2 (lanes_avx2.cpp; 2D and 3D).
+// kernel.run over s.wide[begin, end) in 4-lane packs, compiled for AVX2 (lanes_x86.cpp; 2D and 3D).
 // (The target attribute is part of the function's identity for GCC: declared as defined.)
-#if WEDGE_AVX2_LANES
+#if WEDGE_X86_LANES
 template <int N, class Kernel>
 [[gnu::target("avx2")]] void run_avx2(ContactState<N>& s, const Kernel& kernel, int begin, int end);
+// The same compiled for AVX-512, whose 32 vector registers hold what AVX2's 16 spill to the stack.
+template <int N, class Kernel>
+[[gnu::target(WEDGE_AVX512_TARGET)]] void run_avx512(ContactState<N>& s, const Kernel& kernel, int begin, int end);
 #endif
 
 }  // namespace wedge::contact::lanes

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "contact/impulses.hpp"
 #include "contact/lanes.hpp"
@@ -48,12 +49,13 @@ Softness make_soft(double hertz, double zeta, double h) {
   return {omega / a1, a2 * a3, a3};
 }
 
-// A kernel over s.wide[begin, end): in 4-lane packs on AVX2 (lanes_avx2.cpp) where the lanes allow,
-// else in 2-lane packs.
+// A kernel over s.wide[begin, end): in 4-lane packs on AVX-512 or AVX2 (lanes_x86.cpp) where the lanes
+// allow, else in 2-lane packs.
 template <int N, class Kernel>
 void run_lanes(ContactState<N>& s, const Kernel& kernel, int begin, int end) {
-#if WEDGE_AVX2_LANES
+#if WEDGE_X86_LANES
   if constexpr (kWideLanes4<N>) {
+    if (s.lanes == Lanes::Avx512) return lanes::run_avx512(s, kernel, begin, end);
     if (s.lanes == Lanes::Avx2) return lanes::run_avx2(s, kernel, begin, end);
   }
 #endif
@@ -366,17 +368,40 @@ void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   store_velocities(s, bodies);
 }
 
+bool lanes_supported(Lanes l) {
+  switch (l) {
+    case Lanes::Sse2:
+      return true;
+#if WEDGE_X86_LANES
+    case Lanes::Avx2:
+      return __builtin_cpu_supports("avx2");
+    case Lanes::Avx512:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
+             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq");
+#endif
+    default:
+      return false;
+  }
+}
+
 Lanes default_lanes() {
   static const Lanes lanes = [] {
+    const Lanes best = lanes_supported(Lanes::Avx512) ? Lanes::Avx512
+                       : lanes_supported(Lanes::Avx2) ? Lanes::Avx2
+                                                      : Lanes::Sse2;
     const char* env = std::getenv("WEDGE_SIMD");
     const std::string want = env ? env : "auto";
-    if (want != "auto" && want != "sse2" && want != "avx2")
-      std::fprintf(stderr, "wedge: WEDGE_SIMD=%s is not auto, sse2 or avx2; using auto\n", want.c_str());
-    if (want == "sse2") return Lanes::Sse2;
-#if WEDGE_AVX2_LANES
-    if (__builtin_cpu_supports("avx2")) return Lanes::Avx2;
-#endif
-    return Lanes::Sse2;
+    constexpr std::pair<const char*, Lanes> kNames[] = {
+        {"sse2", Lanes::Sse2}, {"avx2", Lanes::Avx2}, {"avx512", Lanes::Avx512}};
+    for (const auto& [name, l] : kNames) {
+      if (want != name) continue;
+      if (lanes_supported(l)) return l;
+      std::fprintf(stderr, "wedge: WEDGE_SIMD=%s: this CPU cannot run it; using auto\n", name);
+      return best;
+    }
+    if (want != "auto")
+      std::fprintf(stderr, "wedge: WEDGE_SIMD=%s is not auto, sse2, avx2 or avx512; using auto\n", want.c_str());
+    return best;
   }();
   return lanes;
 }

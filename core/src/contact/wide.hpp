@@ -8,8 +8,8 @@
 // per constraint and pass, and written back once.
 //
 // A Wide is P packs of L doubles, GCC's generic vectors (also Clang's): stored as 16-byte packs (one SSE2
-// register on baseline x86-64, NEON elsewhere), and read as 32-byte packs by the AVX2 kernels
-// (lanes.hpp, lanes_avx2.cpp). Every lane is plain IEEE double arithmetic, so the results do not depend
+// register on baseline x86-64, NEON elsewhere), and read as 32-byte packs by the AVX2 and AVX-512
+// kernels (lanes.hpp, lanes_x86.cpp). Every lane is plain IEEE double arithmetic, so the results do not depend
 // on the instruction set. The lanes a constraint goes to are fixed by the colour order alone, so the
 // results do not depend on the worker count either.
 #pragma once
@@ -28,12 +28,14 @@ namespace wedge::contact {
 // Every operation is forced inline: one left as a call passes its packs through memory.
 #define WEDGE_WIDE_INLINE [[gnu::always_inline]] inline
 
-// Whether the soft step may run its lanes as AVX2's 4-lane packs (x86 with GCC or Clang; chosen at run
-// time, contact_system.hpp, Lanes).
+// Whether the soft step may run its lanes in AVX2's or AVX-512's 4-lane packs (x86 with GCC or Clang;
+// chosen at run time, contact_system.hpp, Lanes).
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#define WEDGE_AVX2_LANES 1
+#define WEDGE_X86_LANES 1
+// AVX-512's kernels use its 256- and 128-bit forms too (VL) and its double-precision logic (DQ).
+#define WEDGE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512dq"
 #else
-#define WEDGE_AVX2_LANES 0
+#define WEDGE_X86_LANES 0
 #endif
 
 // A pack: L doubles in one register (16 bytes on SSE2 or NEON, 32 on AVX); its comparisons give
