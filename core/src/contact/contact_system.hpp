@@ -378,9 +378,18 @@ template <int N>
 void track_substep_motion(ContactState<N>& state, const std::vector<Body<N>>& bodies);
 template <int N>
 void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings);
-// The step's colour-ordered constraints into lanes (wide.hpp), once their points are prepared: within a
+// The step's colour-ordered constraints into lanes (wide.hpp): assign_lanes gives each a lane (within a
 // colour by point count, most first, kLanes to a wide constraint; the uncoloured group one to a wide
-// constraint, in order. Run by prepare_soft_step.
+// constraint, in order) from the constraints' bodies and point counts alone; fill_wide copies one wide
+// constraint's points, once built and prepared (prepare_points: the step's separations and warm-start
+// impulses), into its lanes. find_contacts runs them wide constraint by wide constraint, each right
+// after building its constraints, while their points are in the cache; pack_wide does all at once.
+template <int N>
+void assign_lanes(ContactState<N>& state);
+template <int N>
+void fill_wide(ContactState<N>& state, WideConstraint<N>& wide);
+template <int N>
+void prepare_points(ContactState<N>& state, const Constraint<N>& constraint, bool warm_start);
 template <int N>
 void pack_wide(ContactState<N>& state);
 // One solve (use_bias) or relax pass of the contacts over the packed lanes, and the lanes' impulses back

@@ -189,8 +189,11 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
 }
 
 // Before the step's first stage: inverse world inertia of every awake dynamic body, and velocities.
+// The soft step freezes the bodies that do not move: they are only read (writing their unchanged
+// velocities would chain every contact with the ground through one memory location, and two workers
+// through one cache line). Shock propagation freezes bodies level by level instead.
 template <int N>
-void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool soft) {
   for_each_body(s, int(bodies.size()), [&](int i) {
     const Body<N>& b = bodies[i];
     SolverBody<N>& sb = s.solver_bodies[i];
@@ -198,7 +201,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
     sb.w = b.angular_velocity;
     sb.vp.setZero();
     sb.wp = Bivector<N>{};
-    sb.frozen = false;
+    sb.frozen = soft && !moves(s, bodies, i);
     if (moves(s, bodies, i)) {
       sb.inv_mass = b.inv_mass;
       sb.isotropic = linalg::is_isotropic(b.inv_inertia);
@@ -315,7 +318,9 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
                                        : nullptr;
   for (int k = 0; k < c.count; ++k) {
     const ContactPoint<N>& cp = p.manifold.points[k];
-    PointConstraint<N>& q = s.points[c.first + k];  // (fresh: build_constraints resized the array)
+    // (The array is not cleared between steps: sweeping it a second time cost more than the writes.)
+    PointConstraint<N>& q = s.points[c.first + k];
+    q = PointConstraint<N>{};
     q.ra = p.arm_a[k];
     q.rb = p.arm_b[k];
     if (last) {
@@ -358,14 +363,18 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
   s.constraints[index] = c;
 }
 
-// One constraint per pair with contact points and an awake dynamic body, in colour order for the soft
-// step.
+// One constraint per pair with contact points and an awake dynamic body. For the soft step, in colour
+// order and built wide constraint by wide constraint: each one's constraints, their points prepared for
+// the sub-steps, then the lanes filled from them while they are in the cache (a resting pyramid's points
+// no longer fit it: building, preparing and packing in three sweeps over them took a quarter of its
+// step).
 template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
-                       double slip_speed, double match_distance, bool colour) {
+                       const ContactSettings& settings) {
+  const bool soft = settings.solver == ContactSolver::SoftStep;
+  const double slip_speed = settings.static_slip_speed, match_distance = settings.contact_margin;
   s.constraints.clear();
-  s.points.swap(s.previous_points);  // (kept for the recycled pairs' masses)
-  s.points.clear();
+  s.points.swap(s.previous_points);  // (kept for the recycled pairs' masses; build_constraint resets each point)
   s.constraint_pairs.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
@@ -381,19 +390,42 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     if (moves(s, bodies, p.a) || moves(s, bodies, p.b)) s.constraint_pairs.push_back(int(pi));
   }
   s.colour_start.clear();
-  if (colour) colour_constraints(s, bodies);
-  // Where each constraint's points go, then every constraint on its own (split over the workers).
+  if (soft) colour_constraints(s, bodies);
+  // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), then
+  // every constraint on its own (split over the workers).
   s.constraints.resize(s.constraint_pairs.size());
   int total = 0;
   for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
-    s.constraints[k].first = total;
-    total += s.pairs[s.constraint_pairs[k]].manifold.count;
+    const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
+    Constraint<N>& c = s.constraints[k];
+    c.first = total;
+    c.count = p.manifold.count;
+    c.a = int(p.a);
+    c.b = int(p.b);
+    total += c.count;
   }
   s.points.resize(total);
-  s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int begin, int end) {
-    for (int k = begin; k < end; ++k)
-      build_constraint(s, bodies, materials, slip_speed, match_distance, s.constraint_pairs[k], k,
-                       s.constraints[k].first);
+  const auto build = [&](int k) {
+    build_constraint(s, bodies, materials, slip_speed, match_distance, s.constraint_pairs[k], k,
+                     s.constraints[k].first);
+  };
+  if (!soft) {
+    s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int begin, int end) {
+      for (int k = begin; k < end; ++k) build(k);
+    });
+    return;
+  }
+  assign_lanes(s);
+  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      WideConstraint<N>& w = s.wide[i];
+      for (int l = 0; l < kLanes<N>; ++l) {
+        if (w.constraint[l] < 0) continue;
+        build(w.constraint[l]);
+        prepare_points(s, s.constraints[w.constraint[l]], settings.warm_start);
+      }
+      fill_wide(s, w);
+    }
   });
 }
 
@@ -425,9 +457,8 @@ void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shape
   update_broad_phase(s, bodies, shapes, h);
   merge_pairs(s, bodies);
   narrow_phase(s, bodies, shapes, settings, h);
-  load_solver_bodies(s, bodies);
-  build_constraints(s, bodies, materials, settings.static_slip_speed, settings.contact_margin,
-                    settings.solver == ContactSolver::SoftStep);
+  load_solver_bodies(s, bodies, settings.solver == ContactSolver::SoftStep);
+  build_constraints(s, bodies, materials, settings);
   if (settings.solver == ContactSolver::Paper && settings.shock_iterations > 0) compute_levels(s, bodies);
 }
 

@@ -116,6 +116,40 @@ void warm_start_substep(ContactState<N>& s) {
   });
 }
 
+// Restitution once the sub-steps are done: points that approached faster than the threshold when the
+// step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule).
+template <int N>
+void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
+  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
+    if (c.restitution <= 0.0) return;
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    for (int k = c.first; k < c.first + c.count; ++k) {
+      PointConstraint<N>& p = s.points[k];
+      if (p.approach > -settings.restitution_threshold || p.normal_total <= 0.0) continue;
+      const double un = c.normal.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
+      const double next = std::max(p.normal_impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
+      const double change = next - p.normal_impulse;
+      p.normal_impulse = next;
+      p.normal_total += change;
+      apply_normal_impulse(a, b, p, c.normal, change);
+    }
+  });
+}
+
+}  // namespace
+
+// One solve (use_bias) or relax pass over the lanes.
+template <int N>
+void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias,
+                    bool count_warm_start) {
+  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
+                         s.soft_mass_scale, s.soft_impulse_scale,        use_bias,
+                         count_warm_start};
+  for_each_wide(s, pass);
+}
+
+// The lanes' data of one wide constraint: its lanes' normals, bodies and points (zero in empty lanes).
 template <int N>
 void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   constexpr int K = kBiv<N>;
@@ -178,39 +212,6 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// Restitution once the sub-steps are done: points that approached faster than the threshold when the
-// step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule).
-template <int N>
-void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
-  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
-    if (c.restitution <= 0.0) return;
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      if (p.approach > -settings.restitution_threshold || p.normal_total <= 0.0) continue;
-      const double un = c.normal.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
-      const double next = std::max(p.normal_impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
-      const double change = next - p.normal_impulse;
-      p.normal_impulse = next;
-      p.normal_total += change;
-      apply_normal_impulse(a, b, p, c.normal, change);
-    }
-  });
-}
-
-}  // namespace
-
-// One solve (use_bias) or relax pass over the lanes.
-template <int N>
-void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias,
-                    bool count_warm_start) {
-  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
-                         s.soft_mass_scale, s.soft_impulse_scale,        use_bias,
-                         count_warm_start};
-  for_each_wide(s, pass);
-}
-
 // The lanes' accumulated impulses back to the points (events, restitution, the next step's warm start).
 template <int N>
 void unpack_wide(ContactState<N>& s) {
@@ -232,11 +233,11 @@ void unpack_wide(ContactState<N>& s) {
   });
 }
 
-// Packs the colour-ordered constraints into lanes: within a colour by point count, most first (so the
+// Assigns the colour-ordered constraints to lanes: within a colour by point count, most first (so the
 // lanes of a wide constraint are filled alike), kLanes<N> to a wide constraint; the uncoloured group,
 // whose constraints may share bodies, one to a wide constraint in order.
 template <int N>
-void pack_wide(ContactState<N>& s) {
+void assign_lanes(ContactState<N>& s) {
   s.wide.clear();
   s.wide_inertia.clear();
   s.wide_start.clear();
@@ -283,7 +284,11 @@ void pack_wide(ContactState<N>& s) {
   }
   s.wide_start.push_back(int(s.wide.size()));
   s.wide_points.resize(slots);
-  // The lanes' data, every wide constraint on its own.
+}
+
+template <int N>
+void pack_wide(ContactState<N>& s) {
+  assign_lanes(s);
   s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
     for (int i = begin; i < end; ++i) fill_wide(s, s.wide[i]);
   });
@@ -298,9 +303,6 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     sb.r0_inverse = to_matrix(bodies[i].rotor).transpose();
     sb.dp.setZero();
     sb.dq.setIdentity();
-    // Bodies that do not move are only read: writing their unchanged velocities would chain every
-    // contact with the ground through one memory location (and two workers through one cache line).
-    sb.frozen = !moves(s, bodies, i);
   });
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
@@ -309,17 +311,20 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   s.soft_mass_scale = soft.mass_scale;
   s.soft_impulse_scale = soft.impulse_scale;
   s.substep = 0;
-  for_each_constraint(s, [&](const Constraint<N>& c) {
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
-      p.separation = p.gap;
-      p.normal_impulse = settings.warm_start ? p.warm_normal : 0.0;
-      p.tangent_impulse = settings.warm_start ? p.warm_tangent : Vec<N>::Zero();
-      p.normal_total = 0.0;
-    }
-  });
-  pack_wide(s);
+}
+
+// A constraint's points at the start of the soft step: the separation to follow through the sub-steps,
+// and the warm-start impulses.
+template <int N>
+void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start) {
+  for (int k = c.first; k < c.first + c.count; ++k) {
+    PointConstraint<N>& p = s.points[k];
+    p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
+    p.separation = p.gap;
+    p.normal_impulse = warm_start ? p.warm_normal : 0.0;
+    p.tangent_impulse = warm_start ? p.warm_tangent : Vec<N>::Zero();
+    p.normal_total = 0.0;
+  }
 }
 
 template <int N>
@@ -411,6 +416,9 @@ Lanes default_lanes() {
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
   template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);       \
+  template void assign_lanes<N>(ContactState<N>&);                                                           \
+  template void fill_wide<N>(ContactState<N>&, WideConstraint<N>&);                                          \
+  template void prepare_points<N>(ContactState<N>&, const Constraint<N>&, bool);                            \
   template void pack_wide<N>(ContactState<N>&);                                                              \
   template void solve_contacts<N>(ContactState<N>&, const ContactSettings&, double, bool, bool);            \
   template void unpack_wide<N>(ContactState<N>&);
