@@ -178,8 +178,6 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
     PointConstraint<N> z;
     z.jn_a.setZero();
     z.jn_b.setZero();
-    z.dn_a.setZero();
-    z.dn_b.setZero();
     z.tangent_mass.setZero();
     return z;
   }();
@@ -198,8 +196,6 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
     for (int i = 0; i < K; ++i) {
       q.jn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_a[i]; });
       q.jn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_b[i]; });
-      q.dn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.dn_a[i]; });
-      q.dn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.dn_b[i]; });
     }
     for (int i = 0; i < N; ++i) {
       q.tangent_impulse[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_impulse[i]; });

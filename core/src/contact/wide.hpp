@@ -199,7 +199,7 @@ template <int N, class W = Wide<N>>
 struct WidePointT {
   static constexpr int K = kBiv<N>;
   W separation, normal_mass, normal_impulse, normal_total;  // as PointConstraint
-  W jn_a[K], jn_b[K], dn_a[K], dn_b[K];
+  W jn_a[K], jn_b[K];  // the normal's rows of the Jacobian (I^-1 jn is formed in the pass)
   W friction, sliding;  // sliding: 1 or 0
   W tangent_impulse[N], slip_direction[N], ra[N], rb[N];
   W tangent_mass[N * N];  // column-major, as Eigen's
