@@ -121,7 +121,8 @@ struct PointConstraint {
   double normal_total = 0.0;     // N s, over all stages (events, ContactInfo)
   // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
   // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb; restitution reads them).
-  Eigen::Matrix<double, kBiv<N>, 1> jn_a, jn_b, dn_a, dn_b;
+  Eigen::Matrix<double, kBiv<N>, 1> jn_a = Eigen::Matrix<double, kBiv<N>, 1>::Zero(), jn_b = jn_a, dn_a = jn_a,
+                                    dn_b = jn_a;
   // Friction (and both passes of the paper's solver).
   double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
   bool sliding = false;   // it was slipping: kinetic friction, against the slip
@@ -130,7 +131,7 @@ struct PointConstraint {
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
   // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
   // that makes it (of the pair, or of the unfrozen body during shock propagation).
-  Mat<N> tangent_mass;
+  Mat<N> tangent_mass = Mat<N>::Zero();
   // K n, of the bodies that can move (the pair's, or the unfrozen body's in shock propagation): how a
   // friction impulse j_t changes the normal velocity, n . K j_t = (K n) . j_t.
   Vec<N> kn = Vec<N>::Zero();

@@ -174,13 +174,7 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
     }
   }
   // A lane without a point reads one whose every field is zero (no test per field and lane).
-  static const PointConstraint<N> none = [] {
-    PointConstraint<N> z;
-    z.jn_a.setZero();
-    z.jn_b.setZero();
-    z.tangent_mass.setZero();
-    return z;
-  }();
+  static const PointConstraint<N> none{};
   for (int k = 0; k < w.count; ++k) {
     const PointConstraint<N>* p[kLanes<N>];
     for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : &none;
