@@ -63,7 +63,6 @@ struct Pair {
   bool cached = false;
   Mat<N> rotation_a = Mat<N>::Identity(), rotation_b = Mat<N>::Identity();  // the bodies' rotations then
   Vec<N> relative_position = Vec<N>::Zero();       // m, b's centre in a's frame then
-  Mat<N> relative_rotation = Mat<N>::Identity();  // b's rotation in a's frame then
   std::array<Vec<N>, kMaxManifoldPoints<N>> anchor_a = zero_vectors(), anchor_b = zero_vectors();  // arms then
   std::array<double, kMaxManifoldPoints<N>> base_gap{};  // m, each point's gap then
   bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }

@@ -22,11 +22,13 @@ namespace wedge::contact {
 
 namespace {
 
-// The angle of a turn by the rotation matrix q, as |q - 1|_F / sqrt(2) (exact for a small turn in one
-// plane, larger for turns in several).
+// The angle of the turn q p^T between two rotation matrices, as |q p^T - 1|_F / sqrt(2) (exact for a
+// small turn in one plane, larger for turns in several). For rotations |Q - 1|_F^2 = 2 (N - tr Q), and
+// tr(q p^T) is the sum of the elementwise products: N^2 products instead of a matrix product and a
+// norm. (Round-off in N - tr leaves angles below about 3e-8 rad unresolved: far under recycle_angle.)
 template <int N>
-double turn_angle(const Mat<N>& q) {
-  return (q - Mat<N>::Identity()).norm() * M_SQRT1_2;
+double turn_angle(const Mat<N>& q, const Mat<N>& p) {
+  return std::sqrt(std::max(N - q.cwiseProduct(p).sum(), 0.0));
 }
 
 }  // namespace
@@ -35,11 +37,15 @@ template <int N>
 bool recycle_manifold(Pair<N>& p, const Body<N>& a, const Body<N>& b, const Mat<N>& ra, const Mat<N>& rb,
                       double extent, const ContactSettings& settings) {
   if (!p.cached || p.manifold.count == 0 || !(settings.recycle_distance > 0.0)) return false;
+  if (turn_angle<N>(ra, p.rotation_a) > settings.recycle_angle ||
+      turn_angle<N>(rb, p.rotation_b) > settings.recycle_angle)
+    return false;
+  // The turns since: dqa = ra Ra^T, dqb = rb Rb^T. The relative turn (b's in a's frame, then and now)
+  // is (Ra^T Rb)^T (ra^T rb), whose trace is that of dqa^T dqb.
   const Mat<N> dqa = ra * p.rotation_a.transpose(), dqb = rb * p.rotation_b.transpose();
-  if (turn_angle<N>(dqa) > settings.recycle_angle || turn_angle<N>(dqb) > settings.recycle_angle) return false;
   const Vec<N> dc = b.center - a.center;
   const double moved = (ra.transpose() * dc - p.relative_position).norm();
-  const double turned = turn_angle<N>(Mat<N>(p.relative_rotation.transpose() * (ra.transpose() * rb)));
+  const double turned = turn_angle<N>(dqa, dqb);
   if (!(moved + extent * turned < settings.recycle_distance)) return false;
   Manifold<N>& m = p.manifold;
   m.depth = -INFINITY;
@@ -60,7 +66,6 @@ void cache_manifold(Pair<N>& p, const Body<N>& a, const Body<N>& b, const Mat<N>
   p.rotation_a = ra;
   p.rotation_b = rb;
   p.relative_position = ra.transpose() * (b.center - a.center);
-  p.relative_rotation = ra.transpose() * rb;
   for (int k = 0; k < p.manifold.count; ++k) {
     const ContactPoint<N>& cp = p.manifold.points[k];
     p.arm_a[k] = p.anchor_a[k] = cp.point - a.center;
