@@ -75,30 +75,6 @@ struct WideVelocities {
   }
 };
 
-// I^-1 t for each lane's two bodies (ta for a's, tb for b's): a scale where both are isotropic
-// (inverse_inertia_times, contact_system.hpp), else the matrices.
-template <int N, class W>
-[[gnu::always_inline]] inline void inverse_inertia_times(const WideConstraintT<N, W>& c,
-                                                         const WideInertiaT<N, W>* inertia, const W* ta,
-                                                         const W* tb, W* da, W* db) {
-  constexpr int K = kBiv<N>;
-  if (!inertia) {
-    for (int i = 0; i < K; ++i) {
-      da[i] = c.iso_a * ta[i];
-      db[i] = c.iso_b * tb[i];
-    }
-    return;
-  }
-  for (int i = 0; i < K; ++i) {
-    da[i] = inertia->a[i] * ta[0];
-    db[i] = inertia->b[i] * tb[0];
-    for (int k = 1; k < K; ++k) {
-      da[i] += inertia->a[k * K + i] * ta[k];
-      db[i] += inertia->b[k * K + i] * tb[k];
-    }
-  }
-}
-
 // The impulse j at the points' lever arms ra, rb to the lanes' velocities (apply_impulse).
 template <int N, class W>
 [[gnu::always_inline]] inline void apply_wide_impulse(const WideConstraintT<N, W>& c,
@@ -112,11 +88,21 @@ template <int N, class W>
     v.va[i] -= c.inv_mass_a * j[i];
     v.vb[i] += c.inv_mass_b * j[i];
   }
-  W da[K], db[K];
-  inverse_inertia_times(c, inertia, ta, tb, da, db);
+  if (!inertia) {
+    for (int i = 0; i < K; ++i) {
+      v.wa[i] -= c.iso_a * ta[i];
+      v.wb[i] += c.iso_b * tb[i];
+    }
+    return;
+  }
   for (int i = 0; i < K; ++i) {
-    v.wa[i] -= da[i];
-    v.wb[i] += db[i];
+    W da = inertia->a[i] * ta[0], db = inertia->b[i] * tb[0];
+    for (int k = 1; k < K; ++k) {
+      da += inertia->a[k * K + i] * ta[k];
+      db += inertia->b[k * K + i] * tb[k];
+    }
+    v.wa[i] -= da;
+    v.wb[i] += db;
   }
 }
 
@@ -168,7 +154,7 @@ struct WidePass {
   bool count_warm_start;  // normal_total takes the warm-start impulse first (solve_contacts)
 
   template <class W, class M>
-  [[gnu::always_inline]] void normal(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia,
+  [[gnu::always_inline]] void normal(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia, int slot,
                                      WidePointT<N, W>& p, WideVelocities<N, W>& v) const {
     if (count_warm_start) p.normal_total += p.normal_impulse;
     const W sep = p.separation;
@@ -193,14 +179,19 @@ struct WidePass {
       v.va[i] -= ca * c.normal[i];
       v.vb[i] += cb * c.normal[i];
     }
-    // The angular velocity change per unit normal impulse, I^-1 jn, formed here rather than kept per
-    // point (a sixth of a 3D point's bytes, which the passes stream through): a scale for isotropic
-    // bodies.
-    W dn_a[K], dn_b[K];
-    inverse_inertia_times(c, inertia, p.jn_a, p.jn_b, dn_a, dn_b);
+    // The angular velocity change per unit normal impulse, I^-1 jn: for isotropic bodies formed here
+    // rather than kept per point (a sixth of a 3D point's bytes, which the passes stream through), else
+    // kept beside the inertia matrices.
+    if (!inertia) {
+      for (int i = 0; i < K; ++i) {
+        v.wa[i] -= change * (c.iso_a * p.jn_a[i]);
+        v.wb[i] += change * (c.iso_b * p.jn_b[i]);
+      }
+      return;
+    }
     for (int i = 0; i < K; ++i) {
-      v.wa[i] -= change * dn_a[i];
-      v.wb[i] += change * dn_b[i];
+      v.wa[i] -= change * inertia->dn_a[slot][i];
+      v.wb[i] += change * inertia->dn_b[slot][i];
     }
   }
 
@@ -255,7 +246,7 @@ struct WidePass {
     // (Forced inline, as every lane operation: a call would pass the lanes through memory.)
     const auto pass = [this](const auto& c, auto* points, const auto* inertia, auto& v)
                           __attribute__((always_inline)) {
-      for (int k = 0; k < c.count; ++k) normal<W, M>(c, inertia, points[k], v);
+      for (int k = 0; k < c.count; ++k) normal<W, M>(c, inertia, k, points[k], v);
       for (int k = 0; k < c.count; ++k) friction<W, M>(c, inertia, points[k], v);
     };
     visit_lanes<N, LT>(s, begin, end, pass);

@@ -179,6 +179,13 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
     const PointConstraint<N>* p[kLanes<N>];
     for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : &none;
     const auto lanes = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return field(*p[l]); }); };
+    if (w.inertia >= 0) {
+      WideInertia<N>& m = s.wide_inertia[w.inertia];
+      for (int i = 0; i < K; ++i) {
+        m.dn_a[k][i] = lanes([i](const PointConstraint<N>& x) { return x.dn_a[i]; });
+        m.dn_b[k][i] = lanes([i](const PointConstraint<N>& x) { return x.dn_b[i]; });
+      }
+    }
     WidePoint<N>& q = s.wide_points[w.first + k];
     q.separation = lanes([](const PointConstraint<N>& x) { return x.separation; });
     q.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 
+#include "wedge/collision/manifold.hpp"
 #include "wedge/ga/types.hpp"
 
 namespace wedge::contact {
@@ -219,10 +220,13 @@ struct WideConstraintT {
   unsigned move_a = 0, move_b = 0;  // bit l: lane l's body moves (its velocities are written back)
 };
 
-// The inverse inertia matrices of a wide constraint whose bodies are not all isotropic.
+// The inverse inertia matrices of a wide constraint whose bodies are not all isotropic, and each slot's
+// I^-1 jn (for isotropic bodies the normal pass forms it from jn with one product per component; here
+// it would take a matrix product per point and pass).
 template <int N, class W = Wide<N>>
 struct WideInertiaT {
   W a[kBiv<N> * kBiv<N>], b[kBiv<N> * kBiv<N>];  // column-major (0 for a body that does not move)
+  W dn_a[kMaxManifoldPoints<N>][kBiv<N>], dn_b[kMaxManifoldPoints<N>][kBiv<N>];
 };
 
 template <int N>
