@@ -119,7 +119,8 @@ struct PointConstraint {
   double normal_impulse = 0.0;   // N s, accumulated in the current stage
   double normal_total = 0.0;     // N s, over all stages (events, ContactInfo)
   // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
-  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb; restitution reads them).
+  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb; restitution reads them;
+  // the lanes keep I^-1 jn only for non-isotropic bodies, and form it from jn for the rest).
   Eigen::Matrix<double, kBiv<N>, 1> jn_a = Eigen::Matrix<double, kBiv<N>, 1>::Zero(), jn_b = jn_a, dn_a = jn_a,
                                     dn_b = jn_a;
   // Friction (and both passes of the paper's solver).

@@ -1,9 +1,9 @@
 // The soft step's lane kernels (internal): the passes, the warm start and the sub-step separations
 // over a range of wide constraints (wide.hpp), templates on their lane types LT (LaneTypes).
 // soft_step.cpp runs them in 2-lane packs; lanes_x86.cpp compiles them twice more in 4-lane packs, for
-// AVX2 and for AVX-512 (2D, 3D; gnu::target, in that file alone), run where the CPU has them: the same lanes and the same IEEE operations lane by lane, so the same bits
-// (tested). Nothing else of Wedge needs AVX, and Eigen's code and alignment stay those of the baseline
-// build.
+// AVX2 and for AVX-512 (2D, 3D; gnu::target, in that file alone), run where the CPU has them: the same
+// lanes and the same IEEE operations lane by lane, so the same bits (tested). Nothing else of Wedge
+// needs AVX, and Eigen's code and alignment stay those of the baseline build.
 #pragma once
 
 #include <utility>
