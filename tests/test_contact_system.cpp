@@ -413,6 +413,8 @@ TEMPLATE_TEST_CASE_SIG("a pass in AVX2 or AVX-512 lanes gives the bits of a pass
     REQUIRE(sse2.wide_points.size() == packed.wide_points.size());
     CHECK(std::memcmp(sse2.wide_points.data(), packed.wide_points.data(),
                       sse2.wide_points.size() * sizeof(contact::WidePoint<N>)) == 0);
+    CHECK(std::memcmp(sse2.wide_cold.data(), packed.wide_cold.data(),
+                      sse2.wide_cold.size() * sizeof(contact::WidePointCold<N>)) == 0);
     for (std::size_t i = 0; i < sse2.solver_bodies.size(); ++i) {
       CHECK(std::memcmp(sse2.solver_bodies[i].v.data(), packed.solver_bodies[i].v.data(), sizeof(double) * N) == 0);
       CHECK(std::memcmp(sse2.solver_bodies[i].w.c.data(), packed.solver_bodies[i].w.c.data(),

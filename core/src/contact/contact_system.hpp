@@ -226,6 +226,7 @@ struct ContactState {
   // Soft step: the constraints in lanes (wide.hpp), colour by colour; wide_start as colour_start.
   std::vector<WideConstraint<N>> wide;
   std::vector<WidePoint<N>> wide_points;
+  std::vector<WidePointCold<N>> wide_cold;  // beside wide_points
   std::vector<WideInertia<N>> wide_inertia;
   std::vector<int> wide_start, wide_scratch;
   Lanes lanes = default_lanes();  // the lane kernels' instruction set (the same bits either way)

@@ -27,11 +27,13 @@ struct LaneView {
   using M = typename LT::M;
   using Constraint = WideConstraintT<N, W>;
   using Point = WidePointT<N, W>;
+  using Cold = WidePointColdT<N, W>;
   using Inertia = WideInertiaT<N, W>;
   static const Constraint& constraint(const WideConstraint<N>& c) { return lanes_as<const Constraint>(c); }
   static Point* points(ContactState<N>& s, const WideConstraint<N>& c) {
     return &lanes_as<Point>(s.wide_points[c.first]);
   }
+  static Cold* cold(ContactState<N>& s, const WideConstraint<N>& c) { return &lanes_as<Cold>(s.wide_cold[c.first]); }
   static const Inertia* inertia(const ContactState<N>& s, const WideConstraint<N>& c) {
     return c.inertia >= 0 ? &lanes_as<const Inertia>(s.wide_inertia[c.inertia]) : nullptr;
   }
@@ -106,7 +108,7 @@ template <int N, class W>
   }
 }
 
-// fn(c, points, inertia, v) for each wide constraint of s.wide[begin, end), seen through LT's lanes, its
+// fn(c, points, cold, inertia, v) for each wide constraint of s.wide[begin, end), seen through LT's lanes, its
 // bodies' velocities v gathered into lanes before and written back after (the passes and the warm start).
 template <int N, class LT, class F>
 [[gnu::always_inline]] inline void visit_lanes(ContactState<N>& s, int begin, int end, F&& fn) {
@@ -116,7 +118,7 @@ template <int N, class LT, class F>
     const auto& c = View::constraint(stored);
     WideVelocities<N, typename LT::W> v;
     v.gather(s.solver_bodies, c);
-    fn(c, View::points(s, stored), View::inertia(s, stored), v);
+    fn(c, View::points(s, stored), View::cold(s, stored), View::inertia(s, stored), v);
     v.scatter(s.solver_bodies, c);
   }
 }
@@ -125,8 +127,9 @@ template <int N, class LT, class F>
 // slip the point had when the step began, or the cone's nearest impulse in the tangent mass's metric.
 // (Out of line and by reference: the rare path, and plain scalar code whatever the lanes.)
 template <int N, class W, class M>
-[[gnu::noinline]] void clamp_to_cones(const WideConstraintT<N, W>& c, const WidePointT<N, W>& p, const W* slip,
-                                      W* next, const W& limit, const M& outside) {
+[[gnu::noinline]] void clamp_to_cones(const WideConstraintT<N, W>& c, const WidePointT<N, W>& p,
+                                      const WidePointColdT<N, W>& cold, const W* slip, W* next, const W& limit,
+                                      const M& outside) {
   for (int l = 0; l < kLanes<N>; ++l) {
     if (!outside[l]) continue;
     Vec<N> n, sl, nx, dir;
@@ -135,10 +138,10 @@ template <int N, class W, class M>
       n[i] = c.normal[i][l];
       sl[i] = slip[i][l];
       nx[i] = next[i][l];
-      dir[i] = p.slip_direction[i][l];
+      dir[i] = cold.slip_direction[i][l];
     }
     for (int i = 0; i < N * N; ++i) tm.data()[i] = p.tangent_mass[i][l];
-    const bool forward = p.sliding[l] > 0.0 && sl.dot(dir) > 0.0;
+    const bool forward = cold.sliding[l] > 0.0 && sl.dot(dir) > 0.0;
     const Vec<N> j = forward ? Vec<N>(dir * -limit[l]) : project_to_cone(tm, n, nx, limit[l]);
     for (int i = 0; i < N; ++i) next[i].set(l, j[i]);
   }
@@ -197,7 +200,8 @@ struct WidePass {
 
   template <class W, class M>
   [[gnu::always_inline]] void friction(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia,
-                                       WidePointT<N, W>& p, WideVelocities<N, W>& v) const {
+                                       WidePointT<N, W>& p, const WidePointColdT<N, W>& cold,
+                                       WideVelocities<N, W>& v) const {
     M held = p.normal_impulse > 0.0;
     for (int i = 0; i < N; ++i) held |= p.tangent_impulse[i] != 0.0;
     const M active = (p.friction > 0.0) & held;
@@ -227,7 +231,7 @@ struct WidePass {
         for (int i = 0; i < N; ++i) next[i] = select(unloaded, splat<W>(0.0), next[i]);
         outside = outside & ~unloaded;
       }
-      if (any(outside)) clamp_to_cones(c, p, slip, next, limit, outside);
+      if (any(outside)) clamp_to_cones(c, p, cold, slip, next, limit, outside);
     }
     W change[N];
     for (int i = 0; i < N; ++i) {
@@ -244,10 +248,10 @@ struct WidePass {
     using W = typename LT::W;
     using M = typename LT::M;
     // (Forced inline, as every lane operation: a call would pass the lanes through memory.)
-    const auto pass = [this](const auto& c, auto* points, const auto* inertia, auto& v)
+    const auto pass = [this](const auto& c, auto* points, const auto* cold, const auto* inertia, auto& v)
                           __attribute__((always_inline)) {
       for (int k = 0; k < c.count; ++k) normal<W, M>(c, inertia, k, points[k], v);
-      for (int k = 0; k < c.count; ++k) friction<W, M>(c, inertia, points[k], v);
+      for (int k = 0; k < c.count; ++k) friction<W, M>(c, inertia, points[k], cold[k], v);
     };
     visit_lanes<N, LT>(s, begin, end, pass);
   }
@@ -259,7 +263,8 @@ struct WarmStart {
   template <class LT>
   [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
     using W = typename LT::W;
-    const auto warm = [](const auto& c, auto* points, const auto* inertia, auto& v) __attribute__((always_inline)) {
+    const auto warm = [](const auto& c, auto* points, const auto*, const auto* inertia, auto& v)
+                          __attribute__((always_inline)) {
       for (int k = 0; k < c.count; ++k) {
         auto& p = points[k];
         p.normal_total += p.normal_impulse;
@@ -313,9 +318,10 @@ struct Separations {
         wb[j] = make_wide<W>([&](int l) { return nb[l][j]; });
       }
       auto* points = View::points(s, w);
+      const auto* cold = View::cold(s, w);
       for (int k = 0; k < w.count; ++k) {
         auto& p = points[k];
-        p.separation = p.base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
+        p.separation = cold[k].base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
       }
     }
   }

@@ -187,20 +187,21 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
       }
     }
     WidePoint<N>& q = s.wide_points[w.first + k];
+    WidePointCold<N>& cold = s.wide_cold[w.first + k];
     q.separation = lanes([](const PointConstraint<N>& x) { return x.separation; });
-    q.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });
+    cold.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });
     q.normal_mass = lanes([](const PointConstraint<N>& x) { return x.normal_mass; });
     q.normal_impulse = lanes([](const PointConstraint<N>& x) { return x.normal_impulse; });
     q.normal_total = lanes([](const PointConstraint<N>& x) { return x.normal_total; });
     q.friction = lanes([](const PointConstraint<N>& x) { return x.friction; });
-    q.sliding = lanes([](const PointConstraint<N>& x) { return x.sliding ? 1.0 : 0.0; });
+    cold.sliding = lanes([](const PointConstraint<N>& x) { return x.sliding ? 1.0 : 0.0; });
     for (int i = 0; i < K; ++i) {
       q.jn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_a[i]; });
       q.jn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_b[i]; });
     }
     for (int i = 0; i < N; ++i) {
       q.tangent_impulse[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_impulse[i]; });
-      q.slip_direction[i] = lanes([i](const PointConstraint<N>& x) { return x.slip_direction[i]; });
+      cold.slip_direction[i] = lanes([i](const PointConstraint<N>& x) { return x.slip_direction[i]; });
       q.ra[i] = lanes([i](const PointConstraint<N>& x) { return x.ra[i]; });
       q.rb[i] = lanes([i](const PointConstraint<N>& x) { return x.rb[i]; });
     }
@@ -281,6 +282,7 @@ void assign_lanes(ContactState<N>& s) {
   }
   s.wide_start.push_back(int(s.wide.size()));
   s.wide_points.resize(slots);
+  s.wide_cold.resize(slots);
 }
 
 template <int N>

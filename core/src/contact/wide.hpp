@@ -195,16 +195,25 @@ using WideMask = typename LaneTypes<N, 2>::M;
 template <int N>
 inline constexpr bool kWideLanes4 = kLanes<N> % 4 == 0;
 
-// Slot k of a wide constraint: every lane's k-th point (zero where a lane has none).
+// Slot k of a wide constraint: every lane's k-th point (zero where a lane has none), the fields that
+// every pass reads. The passes stream these through the cache 16 times a step (a resting pyramid's
+// do not fit it): what they do not read lives apart, in WidePointCold.
 template <int N, class W = Wide<N>>
 struct WidePointT {
   static constexpr int K = kBiv<N>;
   W separation, normal_mass, normal_impulse, normal_total;  // as PointConstraint
   W jn_a[K], jn_b[K];  // the normal's rows of the Jacobian (I^-1 jn is formed in the pass)
-  W friction, sliding;  // sliding: 1 or 0
-  W tangent_impulse[N], slip_direction[N], ra[N], rb[N];
+  W friction;
+  W tangent_impulse[N], ra[N], rb[N];
   W tangent_mass[N * N];  // column-major, as Eigen's
+};
+
+// The rest of slot k: read by the sub-step's separations and by friction outside the cone only.
+template <int N, class W = Wide<N>>
+struct WidePointColdT {
   W base_separation;
+  W sliding;  // 1 or 0
+  W slip_direction[N];
 };
 
 // kLanes<N> constraints of one colour.
@@ -215,7 +224,7 @@ struct WideConstraintT {
   W iso_a, iso_b;            // isotropic inverse inertia (0 for a body that does not move)
   int a[kLanes<N>], b[kLanes<N>];     // solver bodies; -1 in an empty lane
   int constraint[kLanes<N>];       // index into constraints; -1 in an empty lane
-  int first = 0, count = 0;     // its slots: wide_points[first .. first + count)
+  int first = 0, count = 0;     // its slots: wide_points and wide_cold[first .. first + count)
   int inertia = -1;             // wide_inertia index when a moving body is not isotropic, else -1
   unsigned move_a = 0, move_b = 0;  // bit l: lane l's body moves (its velocities are written back)
 };
@@ -231,6 +240,8 @@ struct WideInertiaT {
 
 template <int N>
 using WidePoint = WidePointT<N>;
+template <int N>
+using WidePointCold = WidePointColdT<N>;
 template <int N>
 using WideConstraint = WideConstraintT<N>;
 template <int N>
