@@ -196,13 +196,13 @@ template <int N>
 inline constexpr bool kWideLanes4 = kLanes<N> % 4 == 0;
 
 // Slot k of a wide constraint: every lane's k-th point (zero where a lane has none), the fields that
-// every pass reads. The passes stream these through the cache 16 times a step (a resting pyramid's
+// the solve and relax passes read. The passes stream these through the cache 16 times a step (a resting pyramid's
 // do not fit it): what they do not read lives apart, in WidePointCold.
 template <int N, class W = Wide<N>>
 struct WidePointT {
   static constexpr int K = kBiv<N>;
   W separation, normal_mass, normal_impulse, normal_total;  // as PointConstraint
-  W jn_a[K], jn_b[K];  // the normal's rows of the Jacobian (I^-1 jn is formed in the pass)
+  W jn_a[K], jn_b[K];  // the normal's rows of the Jacobian (I^-1 jn: formed in the pass, or WideInertia's)
   W friction;
   W tangent_impulse[N], ra[N], rb[N];
   W tangent_mass[N * N];  // column-major, as Eigen's
