@@ -233,7 +233,8 @@ namespace {
 // and dynamic bodies with isotropic inverse inertias (inertia 0), general ones (1) or either (2). `coloured`
 // constraints share no moving body (colour 0); three more share body 2 (the uncoloured group). Every
 // point is consistent with its bodies (Jacobian rows, effective masses) and starts with random
-// impulses, separations, friction and slip.
+// impulses, separations, friction and slip. Every body but the ground has moved and turned a little
+// since the step began (dp, dq), which the relax pass's separations follow.
 template <int N>
 contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int inertia) {
   std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
@@ -244,6 +245,13 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
     contact::SolverBody<N>& b = s.solver_bodies[i];
     b.v = random_vector<N>(rng);
     for (int k = 0; k < kBiv<N>; ++k) b.w.c[k] = u(rng);
+    if (i > 0) {
+      b.dp = 0.01 * random_vector<N>(rng);
+      Mat<N> skew = Mat<N>::Zero();  // a turn of a few hundredths of a radian: Cayley's (1 - A)^-1 (1 + A)
+      for (int r = 0; r < N; ++r)
+        for (int c = r + 1; c < N; ++c) skew(r, c) = -(skew(c, r) = 0.03 * u(rng));
+      b.dq = (Mat<N>::Identity() - skew).inverse() * (Mat<N>::Identity() + skew);
+    }
     if (i < 2) {  // frozen: only read
       b.frozen = true;
       b.isotropic = true;
@@ -282,6 +290,7 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
       p.dn_a = contact::inverse_inertia_times(sa, p.jn_a);
       p.dn_b = contact::inverse_inertia_times(sb, p.jn_b);
       p.separation = 0.02 * u(rng);
+      p.base_separation = 0.02 * u(rng);
       p.normal_impulse = rng() % 4 == 0 ? 0.0 : unit(rng);
       const Vec<N> t = random_vector<N>(rng);
       p.tangent_impulse = rng() % 4 == 0 ? Vec<N>::Zero() : Vec<N>(0.3 * (t - t.dot(c.normal) * c.normal));
@@ -303,13 +312,19 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
 }
 
 // The soft step's pass one point at a time, as it was before the lanes (03c200d): per constraint the
-// normal impulses, then friction through friction_update, the scalar code the paper's solver uses.
+// normal impulses, then friction through friction_update, the scalar code the paper's solver uses. The
+// relax pass first takes each point's separation from where its bodies have carried its two ends:
+// base + n . ((dp_b + dq_b rb) - (dp_a + dq_a ra)).
 template <int N>
 void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
   for (const contact::Constraint<N>& c : s.constraints) {
     contact::SolverBody<N>& a = s.solver_bodies[c.a];
     contact::SolverBody<N>& b = s.solver_bodies[c.b];
     const Vec<N>& n = c.normal;
+    for (int k = 0; k < c.count && !use_bias; ++k) {
+      contact::PointConstraint<N>& p = s.points[c.first + k];
+      p.separation = p.base_separation + n.dot(Vec<N>((b.dp + b.dq * p.rb) - (a.dp + a.dq * p.ra)));
+    }
     for (int k = 0; k < c.count; ++k) {
       contact::PointConstraint<N>& p = s.points[c.first + k];
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;

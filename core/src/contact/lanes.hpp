@@ -147,6 +147,50 @@ template <int N, class W, class M>
   }
 }
 
+// m^T v, one Eigen dot product per coefficient (read lane by lane into the wide separations).
+template <int N>
+Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
+  Vec<N> o;
+  for (int i = 0; i < N; ++i) o[i] = m.col(i).dot(v);
+  return o;
+}
+
+// The sub-step's separations of wide constraint c's slots from the bodies' motion since the step began
+// (track_substep_motion): s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra, the turned
+// normal once per pair. The relax pass forms them as it reaches each wide constraint, before its
+// normals: the next solve pass sees the same positions, and a sweep of their own streamed the slots
+// once more per sub-step.
+template <int N, class W, class C, class P, class Cold>
+[[gnu::always_inline]] inline void update_separations(const ContactState<N>& s, const C& c, P* points,
+                                                      const Cold* cold) {
+  double moved[kLanes<N>];
+  Vec<N> na[kLanes<N>], nb[kLanes<N>];
+  for (int l = 0; l < kLanes<N>; ++l) {
+    if (c.constraint[l] < 0) {
+      moved[l] = 0.0;
+      na[l].setZero();
+      nb[l].setZero();
+      continue;
+    }
+    const Constraint<N>& k = s.constraints[c.constraint[l]];
+    const SolverBody<N>& a = s.solver_bodies[k.a];
+    const SolverBody<N>& b = s.solver_bodies[k.b];
+    moved[l] = k.normal.dot(b.dp - a.dp);
+    na[l] = transpose_times(a.dq, k.normal);
+    nb[l] = transpose_times(b.dq, k.normal);
+  }
+  const W m = make_wide<W>([&](int l) { return moved[l]; });
+  W wa[N], wb[N];
+  for (int j = 0; j < N; ++j) {
+    wa[j] = make_wide<W>([&](int l) { return na[l][j]; });
+    wb[j] = make_wide<W>([&](int l) { return nb[l][j]; });
+  }
+  for (int k = 0; k < c.count; ++k) {
+    auto& p = points[k];
+    p.separation = cold[k].base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
+  }
+}
+
 // One pass over wide constraints: the normal impulses first (soft when use_bias and penetrating),
 // then friction in the cone of the updated normal impulse, kLanes<N> constraints at once.
 template <int N>
@@ -155,6 +199,7 @@ struct WidePass {
   double inv_h, push_speed, bias_scale, mass_scale, impulse_scale;
   bool use_bias;
   bool count_warm_start;  // normal_total takes the warm-start impulse first (solve_contacts)
+  bool separations;       // the relax pass: each wide constraint's separations first (update_separations)
 
   template <class W, class M>
   [[gnu::always_inline]] void normal(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia, int slot,
@@ -248,8 +293,9 @@ struct WidePass {
     using W = typename LT::W;
     using M = typename LT::M;
     // (Forced inline, as every lane operation: a call would pass the lanes through memory.)
-    const auto pass = [this](const auto& c, auto* points, const auto* cold, const auto* inertia, auto& v)
+    const auto pass = [this, &s](const auto& c, auto* points, const auto* cold, const auto* inertia, auto& v)
                           __attribute__((always_inline)) {
+      if (separations) update_separations<N, W>(s, c, points, cold);
       for (int k = 0; k < c.count; ++k) normal<W, M>(c, inertia, k, points[k], v);
       for (int k = 0; k < c.count; ++k) friction<W, M>(c, inertia, points[k], cold[k], v);
     };
@@ -274,56 +320,6 @@ struct WarmStart {
       }
     };
     visit_lanes<N, LT>(s, begin, end, warm);
-  }
-};
-
-// m^T v, one Eigen dot product per coefficient (read lane by lane into the wide separations).
-template <int N>
-Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
-  Vec<N> o;
-  for (int i = 0; i < N; ++i) o[i] = m.col(i).dot(v);
-  return o;
-}
-
-// The sub-step's separations from the bodies' motion since the step began:
-// s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra, the turned normal once per pair.
-template <int N>
-struct Separations {
-  template <class LT>
-  [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
-    using View = LaneView<N, LT>;
-    using W = typename LT::W;
-    for (int i = begin; i < end; ++i) {
-      const WideConstraint<N>& w = s.wide[i];
-      double moved[kLanes<N>];
-      Vec<N> na[kLanes<N>], nb[kLanes<N>];
-      for (int l = 0; l < kLanes<N>; ++l) {
-        if (w.constraint[l] < 0) {
-          moved[l] = 0.0;
-          na[l].setZero();
-          nb[l].setZero();
-          continue;
-        }
-        const Constraint<N>& c = s.constraints[w.constraint[l]];
-        const SolverBody<N>& a = s.solver_bodies[c.a];
-        const SolverBody<N>& b = s.solver_bodies[c.b];
-        moved[l] = c.normal.dot(b.dp - a.dp);
-        na[l] = transpose_times(a.dq, c.normal);
-        nb[l] = transpose_times(b.dq, c.normal);
-      }
-      const W m = make_wide<W>([&](int l) { return moved[l]; });
-      W wa[N], wb[N];
-      for (int j = 0; j < N; ++j) {
-        wa[j] = make_wide<W>([&](int l) { return na[l][j]; });
-        wb[j] = make_wide<W>([&](int l) { return nb[l][j]; });
-      }
-      auto* points = View::points(s, w);
-      const auto* cold = View::cold(s, w);
-      for (int k = 0; k < w.count; ++k) {
-        auto& p = points[k];
-        p.separation = cold[k].base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
-      }
-    }
   }
 };
 

@@ -26,8 +26,7 @@ template <int N, class Kernel>
 #define WEDGE_INSTANTIATE(N)                  \
   static_assert(kWideLanes4<N>);              \
   WEDGE_INSTANTIATE_KERNEL(N, WidePass)       \
-  WEDGE_INSTANTIATE_KERNEL(N, WarmStart)      \
-  WEDGE_INSTANTIATE_KERNEL(N, Separations)
+  WEDGE_INSTANTIATE_KERNEL(N, WarmStart)
 WEDGE_INSTANTIATE(2)
 WEDGE_INSTANTIATE(3)
 #undef WEDGE_INSTANTIATE

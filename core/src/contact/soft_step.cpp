@@ -34,7 +34,6 @@ namespace wedge::contact {
 
 namespace {
 
-using lanes::Separations;
 using lanes::WarmStart;
 using lanes::WidePass;
 
@@ -139,13 +138,14 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
 
 }  // namespace
 
-// One solve (use_bias) or relax pass over the lanes.
+// One solve (use_bias) or relax pass over the lanes; the relax pass, which follows the position update,
+// first brings each wide constraint's separations up to date (update_separations).
 template <int N>
 void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias,
                     bool count_warm_start) {
   const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
                          s.soft_mass_scale, s.soft_impulse_scale,        use_bias,
-                         count_warm_start};
+                         count_warm_start,  !use_bias};
   for_each_wide(s, pass);
 }
 
@@ -349,6 +349,8 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   store_velocities(s, bodies);
 }
 
+// How far each body has moved (dp) and turned (dq) since the step began, for the relax pass's
+// separations.
 template <int N>
 void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   if (s.constraints.empty()) return;
@@ -358,8 +360,6 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
     sb.dp = bodies[i].center - sb.x0;
     sb.dq = to_matrix(bodies[i].rotor) * sb.r0_inverse;
   });
-  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>,
-                       [&](int begin, int end) { run_lanes(s, Separations<N>{}, begin, end); });
 }
 
 template <int N>
