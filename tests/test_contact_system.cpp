@@ -275,6 +275,10 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
     c.first = int(s.points.size());
     c.count = 1 + int(rng() % kMaxManifoldPoints<N>);
     c.normal = random_vector<N>(rng).normalized();
+    c.pair = int(s.pairs.size());  // (unpack_wide keeps the impulses in it)
+    s.pairs.emplace_back();
+    s.pairs.back().manifold.count = c.count;
+    for (int k = 0; k < c.count; ++k) s.pairs.back().manifold.points[k].id = 100 + k;
     const contact::SolverBody<N>& sa = s.solver_bodies[a];
     const contact::SolverBody<N>& sb = s.solver_bodies[b];
     for (int k = 0; k < c.count; ++k) {
@@ -394,6 +398,19 @@ TEMPLATE_TEST_CASE_SIG("a pass over the lanes does what the scalar pass does, po
       if (p.friction > 0.0 && p.tangent_impulse.norm() >= p.friction * p.normal_impulse * (1.0 - 1e-12) &&
           p.normal_impulse > 0.0)
         ++clamped;
+    }
+    // unpack_wide kept every point's impulses, total and lever arm in its pair, slot by slot.
+    for (const contact::Constraint<N>& c : lanes.constraints) {
+      const contact::Pair<N>& pair = lanes.pairs[c.pair];
+      REQUIRE(pair.warm_count == c.count);
+      for (int k = 0; k < c.count; ++k) {
+        const contact::PointConstraint<N>& p = lanes.points[c.first + k];
+        CHECK(pair.warm_id[k] == std::uint64_t(100 + k));
+        CHECK(pair.warm_normal[k] == p.normal_impulse);
+        CHECK(pair.normal_impulse[k] == p.normal_total);
+        CHECK(pair.warm_tangent[k] == p.tangent_impulse);
+        CHECK(pair.warm_arm[k] == p.ra);
+      }
     }
   }
   CHECK(clamped > 10);  // the cone's slow path was exercised

@@ -36,6 +36,7 @@ struct Pair {
   std::uint32_t a = 0, b = 0;
   Manifold<N> manifold;
   std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
+  double approach_speed = 0.0;  // m/s, >= 0: the fastest its points approached when the step began (events)
   bool touching = false;   // received a normal impulse or penetrated in the last step
   bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
   int constraint = -1;     // index of its constraint in this step, or -1

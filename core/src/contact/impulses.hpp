@@ -114,7 +114,8 @@ void apply_accumulated(ContactState<N>& s, const Constraint<N>& c) {
   for (int k = 0; k < c.count; ++k) apply_accumulated_point(s, c, k);
 }
 
-// Keeps this step's impulses, per feature, to start the next step from (warm start).
+// Keeps this step's impulses, per feature, to start the next step from (warm start). (The soft step
+// keeps them as it unpacks its lanes: unpack_wide.)
 template <int N>
 void keep_for_warm_start(ContactState<N>& s) {
   for_each_constraint(s, [&](const Constraint<N>& c) {
@@ -127,6 +128,15 @@ void keep_for_warm_start(ContactState<N>& s) {
       pair.warm_normal[k] = p.normal_impulse;
       pair.warm_tangent[k] = p.tangent_impulse;
     }
+  });
+}
+
+// Each point's normal impulse over the step, kept in its pair for the events and ContactInfo.
+template <int N>
+void keep_totals(ContactState<N>& s) {
+  for_each_constraint(s, [&](const Constraint<N>& c) {
+    Pair<N>& pair = s.pairs[c.pair];
+    for (int k = 0; k < c.count; ++k) pair.normal_impulse[k] = s.points[c.first + k].normal_total;
   });
 }
 

@@ -307,6 +307,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
   const SolverBody<N>& sb = s.solver_bodies[c.b];
   std::array<int, kMaxManifoldPoints<N>> match;
   warm_matches(p, bodies[c.a].center, match_distance, match);
+  double approach_speed = 0.0;
   // A recycled manifold keeps its normal and lever arms; with isotropic bodies of the same masses the
   // effective masses and Jacobian rows are then those of the last step, to the bit (the same function
   // of the same numbers), and are copied rather than formed again (an eighth of the instructions of a
@@ -346,6 +347,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     q.gap = -cp.depth;
     const Vec<N> u = relative_velocity(sa, sb, q);
     q.approach = c.normal.dot(u);
+    approach_speed = std::max(approach_speed, -q.approach);
     const Vec<N> slip = u - q.approach * c.normal;
     const double slip_norm = slip.norm();
     q.sliding = slip_norm > slip_speed;
@@ -358,6 +360,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     }
   }
   p.constraint = index;
+  p.approach_speed = approach_speed;
   p.points_first = first;
   p.mass_key = key;
   s.constraints[index] = c;
@@ -472,15 +475,12 @@ void report_events(ContactState<N>& s) {
     if (!p.updated) continue;
     double total = 0.0, approach = 0.0;
     Vec<N> weighted = Vec<N>::Zero();
-    if (p.constraint >= 0) {
-      const Constraint<N>& c = s.constraints[p.constraint];
-      for (int k = 0; k < c.count; ++k) {
-        const PointConstraint<N>& q = s.points[c.first + k];
-        p.normal_impulse[k] = q.normal_total;
-        total += q.normal_total;
-        weighted += q.normal_total * p.manifold.points[k].point;
-        approach = std::max(approach, -q.approach);
+    if (p.constraint >= 0) {  // (its points' totals are in normal_impulse: keep_impulses, keep_totals)
+      for (int k = 0; k < p.manifold.count; ++k) {
+        total += p.normal_impulse[k];
+        weighted += p.normal_impulse[k] * p.manifold.points[k].point;
       }
+      approach = p.approach_speed;
     } else {
       p.normal_impulse.fill(0.0);
     }

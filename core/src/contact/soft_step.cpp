@@ -131,6 +131,9 @@ void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
       const double change = next - p.normal_impulse;
       p.normal_impulse = next;
       p.normal_total += change;
+      Pair<N>& pair = s.pairs[c.pair];  // (unpack_wide has kept the impulses before this change)
+      pair.warm_normal[k - c.first] = next;
+      pair.normal_impulse[k - c.first] = p.normal_total;
       apply_normal_impulse(a, b, p, c.normal, change);
     }
   });
@@ -210,7 +213,10 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// The lanes' accumulated impulses back to the points (events, restitution, the next step's warm start).
+// The lanes' accumulated impulses back to the points (restitution reads them) and, in the same sweep,
+// to their pairs: the warm-start impulses of the next step and the totals of the events (as
+// keep_for_warm_start and keep_totals do for the paper's solver; a sweep of their own read every point
+// again, in colour order, after the lanes had pushed it out of the cache).
 template <int N>
 void unpack_wide(ContactState<N>& s) {
   s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
@@ -219,12 +225,19 @@ void unpack_wide(ContactState<N>& s) {
       for (int l = 0; l < kLanes<N>; ++l) {
         if (w.constraint[l] < 0) continue;
         const Constraint<N>& c = s.constraints[w.constraint[l]];
+        Pair<N>& pair = s.pairs[c.pair];
+        pair.warm_count = c.count;
         for (int k = 0; k < c.count; ++k) {
           const WidePoint<N>& q = s.wide_points[w.first + k];
           PointConstraint<N>& p = s.points[c.first + k];
           p.normal_impulse = q.normal_impulse[l];
           p.normal_total = q.normal_total[l];
           for (int j = 0; j < N; ++j) p.tangent_impulse[j] = q.tangent_impulse[j][l];
+          pair.warm_id[k] = pair.manifold.points[k].id;
+          for (int j = 0; j < N; ++j) pair.warm_arm[k][j] = q.ra[j][l];
+          pair.warm_normal[k] = p.normal_impulse;
+          pair.warm_tangent[k] = p.tangent_impulse;
+          pair.normal_impulse[k] = p.normal_total;
         }
       }
     }
@@ -368,7 +381,6 @@ void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   unpack_wide(s);
   load_velocities(s, bodies);
   apply_restitution(s, settings);
-  keep_for_warm_start(s);
   store_velocities(s, bodies);
 }
 

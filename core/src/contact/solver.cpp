@@ -302,6 +302,7 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   keep_for_warm_start(s);
   limit_energy(s, bodies, false);
   finish_stage(s);
+  keep_totals(s);
   correct_positions(s, settings, h);
   store_velocities(s, bodies);
 }
