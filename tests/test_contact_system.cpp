@@ -315,6 +315,19 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
   return s;
 }
 
+// Point k of constraint c as unpack_wide leaves it in the pair: the last sub-step's normal and
+// tangential impulses and the step's total normal impulse.
+template <int N>
+struct Unpacked {
+  double normal, total;
+  Vec<N> tangent;
+};
+template <int N>
+Unpacked<N> unpacked(const contact::ContactState<N>& s, const contact::Constraint<N>& c, int k) {
+  const contact::Pair<N>& pair = s.pairs[c.pair];
+  return {pair.warm_normal[k], pair.normal_impulse[k], pair.warm_tangent[k]};
+}
+
 // The soft step's pass one point at a time, as it was before the lanes (03c200d): per constraint the
 // normal impulses, then friction through friction_update, the scalar code the paper's solver uses. The
 // relax pass first takes each point's separation from where its bodies have carried its two ends:
@@ -389,27 +402,22 @@ TEMPLATE_TEST_CASE_SIG("a pass over the lanes does what the scalar pass does, po
     // Frozen bodies are never written.
     CHECK(lanes.solver_bodies[0].v == reference.solver_bodies[0].v);
     CHECK(lanes.solver_bodies[1].v == reference.solver_bodies[1].v);
-    for (std::size_t k = 0; k < lanes.points.size(); ++k) {
-      INFO("trial " << trial << ", point " << k);
-      CHECK(std::abs(lanes.points[k].normal_impulse - reference.points[k].normal_impulse) <= tol);
-      CHECK(std::abs(lanes.points[k].normal_total - reference.points[k].normal_total) <= tol);
-      CHECK((lanes.points[k].tangent_impulse - reference.points[k].tangent_impulse).norm() <= tol);
-      const contact::PointConstraint<N>& p = reference.points[k];
-      if (p.friction > 0.0 && p.tangent_impulse.norm() >= p.friction * p.normal_impulse * (1.0 - 1e-12) &&
-          p.normal_impulse > 0.0)
-        ++clamped;
-    }
-    // unpack_wide kept every point's impulses, total and lever arm in its pair, slot by slot.
+    // (unpack_wide keeps each point's impulses, total, feature id and lever arm in its pair, slot by slot.)
     for (const contact::Constraint<N>& c : lanes.constraints) {
       const contact::Pair<N>& pair = lanes.pairs[c.pair];
       REQUIRE(pair.warm_count == c.count);
       for (int k = 0; k < c.count; ++k) {
-        const contact::PointConstraint<N>& p = lanes.points[c.first + k];
+        INFO("trial " << trial << ", point " << c.first + k);
+        const Unpacked<N> got = unpacked(lanes, c, k);
+        const contact::PointConstraint<N>& p = reference.points[c.first + k];
+        CHECK(std::abs(got.normal - p.normal_impulse) <= tol);
+        CHECK(std::abs(got.total - p.normal_total) <= tol);
+        CHECK((got.tangent - p.tangent_impulse).norm() <= tol);
         CHECK(pair.warm_id[k] == std::uint64_t(100 + k));
-        CHECK(pair.warm_normal[k] == p.normal_impulse);
-        CHECK(pair.normal_impulse[k] == p.normal_total);
-        CHECK(pair.warm_tangent[k] == p.tangent_impulse);
         CHECK(pair.warm_arm[k] == p.ra);
+        if (p.friction > 0.0 && p.tangent_impulse.norm() >= p.friction * p.normal_impulse * (1.0 - 1e-12) &&
+            p.normal_impulse > 0.0)
+          ++clamped;
       }
     }
   }
@@ -505,9 +513,9 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
       }
       for (const contact::Constraint<N>& c : s.constraints)
         for (int k = 0; k < c.count; ++k) {
-          const contact::PointConstraint<N>& p = s.points[c.first + k];
-          const Vec<N> j = p.normal_impulse * c.normal + p.tangent_impulse;
-          contact::apply_impulse(expected[c.a], expected[c.b], p, j);
+          const Unpacked<N> u = unpacked(s, c, k);
+          const Vec<N> j = u.normal * c.normal + u.tangent;
+          contact::apply_impulse(expected[c.a], expected[c.b], s.points[c.first + k], j);
         }
       double scale = 0.0;
       for (const auto& b : expected) scale = std::max({scale, b.v.cwiseAbs().maxCoeff(), b.w.c.cwiseAbs().maxCoeff()});
@@ -522,15 +530,17 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
     contact::track_substep_motion(s, bodies);
     contact::solve_substep(s, bodies, settings, h, false);
     contact::unpack_wide(s);
-    for (std::size_t k = 0; k < s.points.size(); ++k) summed[k] += s.points[k].normal_impulse;
+    for (const contact::Constraint<N>& c : s.constraints)
+      for (int k = 0; k < c.count; ++k) summed[c.first + k] += unpacked(s, c, k).normal;
   }
   int loaded = 0;
   double largest = 0.0;
   for (const double x : summed) largest = std::max(largest, x);
-  for (std::size_t k = 0; k < s.points.size(); ++k) {
-    INFO("point " << k);
-    CHECK(std::abs(s.points[k].normal_total - summed[k]) <= 1e-12 * largest);
-    if (summed[k] > 0.0) ++loaded;
-  }
+  for (const contact::Constraint<N>& c : s.constraints)
+    for (int k = 0; k < c.count; ++k) {
+      INFO("point " << c.first + k);
+      CHECK(std::abs(unpacked(s, c, k).total - summed[c.first + k]) <= 1e-12 * largest);
+      if (summed[c.first + k] > 0.0) ++loaded;
+    }
   CHECK(loaded >= int(s.points.size()) / 2);
 }

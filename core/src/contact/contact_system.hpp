@@ -395,8 +395,9 @@ template <int N>
 void prepare_points(ContactState<N>& state, const Constraint<N>& constraint, bool warm_start);
 template <int N>
 void pack_wide(ContactState<N>& state);
-// One solve (use_bias) or relax pass of the contacts over the packed lanes, and the lanes' impulses back
-// to the points (run by solve_substep and finish_soft_step; declared for the tests). count_warm_start:
+// One solve (use_bias) or relax pass of the contacts over the packed lanes, and the lanes' impulses to
+// the pairs (warm_normal, warm_tangent, and the totals in normal_impulse; run by solve_substep and
+// finish_soft_step; declared for the tests). count_warm_start:
 // each point's normal_total first takes its accumulated impulse, which the sub-step's warm start applied
 // body by body without visiting the point.
 template <int N>

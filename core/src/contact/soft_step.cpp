@@ -116,24 +116,25 @@ void warm_start_substep(ContactState<N>& s) {
 }
 
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
-// step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule).
+// step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule). The accumulated
+// impulses are the pair's (unpack_wide): warm_normal the last sub-step's, normal_impulse the step's.
 template <int N>
 void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
   for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
     if (c.restitution <= 0.0) return;
     SolverBody<N>& a = s.solver_bodies[c.a];
     SolverBody<N>& b = s.solver_bodies[c.b];
-    for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
-      if (p.approach > -settings.restitution_threshold || p.normal_total <= 0.0) continue;
+    Pair<N>& pair = s.pairs[c.pair];
+    for (int k = 0; k < c.count; ++k) {
+      const PointConstraint<N>& p = s.points[c.first + k];
+      double& impulse = pair.warm_normal[k];
+      double& total = pair.normal_impulse[k];
+      if (p.approach > -settings.restitution_threshold || total <= 0.0) continue;
       const double un = c.normal.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
-      const double next = std::max(p.normal_impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
-      const double change = next - p.normal_impulse;
-      p.normal_impulse = next;
-      p.normal_total += change;
-      Pair<N>& pair = s.pairs[c.pair];  // (unpack_wide has kept the impulses before this change)
-      pair.warm_normal[k - c.first] = next;
-      pair.normal_impulse[k - c.first] = p.normal_total;
+      const double next = std::max(impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
+      const double change = next - impulse;
+      impulse = next;
+      total += change;
       apply_normal_impulse(a, b, p, c.normal, change);
     }
   });
@@ -213,10 +214,10 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// The lanes' accumulated impulses back to the points (restitution reads them) and, in the same sweep,
-// to their pairs: the warm-start impulses of the next step and the totals of the events (as
-// keep_for_warm_start and keep_totals do for the paper's solver; a sweep of their own read every point
-// again, in colour order, after the lanes had pushed it out of the cache).
+// The lanes' accumulated impulses to the pairs, where the events, restitution and the next step's warm
+// start read them (the points keep their impulses as the step began: the paper's solver alone moves them
+// back, keep_for_warm_start and keep_totals). Writing them to the points as well cost a sweep over
+// them in colour order, long pushed out of the cache by the lanes.
 template <int N>
 void unpack_wide(ContactState<N>& s) {
   s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
@@ -229,15 +230,13 @@ void unpack_wide(ContactState<N>& s) {
         pair.warm_count = c.count;
         for (int k = 0; k < c.count; ++k) {
           const WidePoint<N>& q = s.wide_points[w.first + k];
-          PointConstraint<N>& p = s.points[c.first + k];
-          p.normal_impulse = q.normal_impulse[l];
-          p.normal_total = q.normal_total[l];
-          for (int j = 0; j < N; ++j) p.tangent_impulse[j] = q.tangent_impulse[j][l];
           pair.warm_id[k] = pair.manifold.points[k].id;
-          for (int j = 0; j < N; ++j) pair.warm_arm[k][j] = q.ra[j][l];
-          pair.warm_normal[k] = p.normal_impulse;
-          pair.warm_tangent[k] = p.tangent_impulse;
-          pair.normal_impulse[k] = p.normal_total;
+          pair.warm_normal[k] = q.normal_impulse[l];
+          pair.normal_impulse[k] = q.normal_total[l];
+          for (int j = 0; j < N; ++j) {
+            pair.warm_tangent[k][j] = q.tangent_impulse[j][l];
+            pair.warm_arm[k][j] = q.ra[j][l];
+          }
         }
       }
     }
