@@ -113,8 +113,8 @@ struct SolverBody {
 // accumulated impulses of the current stage.
 template <int N>
 struct PointConstraint {
-  // (The soft step's passes read these from the lanes, wide.hpp, packed from here once per step and
-  // unpacked after the last sub-step: normal_impulse, normal_total and tangent_impulse.)
+  // (The soft step's passes read these from the lanes, wide.hpp, packed from here once per step; after
+  // the last sub-step its accumulated impulses go to the pair, not back here: unpack_wide.)
   double separation = 0.0;       // m, soft step: the separation when the step began (the lanes follow it)
   double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
   double normal_impulse = 0.0;   // N s, accumulated in the current stage
