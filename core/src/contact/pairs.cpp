@@ -475,7 +475,7 @@ void report_events(ContactState<N>& s) {
     if (!p.updated) continue;
     double total = 0.0, approach = 0.0;
     Vec<N> weighted = Vec<N>::Zero();
-    if (p.constraint >= 0) {  // (its points' totals are in normal_impulse: keep_impulses, keep_totals)
+    if (p.constraint >= 0) {  // (its points' totals are in normal_impulse: unpack_wide, keep_totals)
       for (int k = 0; k < p.manifold.count; ++k) {
         total += p.normal_impulse[k];
         weighted += p.normal_impulse[k] * p.manifold.points[k].point;
