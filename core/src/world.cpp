@@ -355,7 +355,7 @@ void World<N>::step(double h) {
     process_collisions(h);
     integrate_velocities(h);
     process_contacts(h);
-    integrate_positions(h, true);
+    integrate_positions(h, true, false);
   }
   update_islands(h);
   report_contact_events();
@@ -379,8 +379,7 @@ void World<N>::soft_step(double h) {
   for (int i = 0; i < c.substeps; ++i) {
     integrate_velocities(hs);
     contact::solve_substep(*contact_, bodies_, c, hs, true);
-    integrate_positions(hs, i == c.substeps - 1);
-    contact::track_substep_motion(*contact_, bodies_);
+    integrate_positions(hs, i == c.substeps - 1, true);
     contact::solve_substep(*contact_, bodies_, c, hs, false);
   }
   contact::finish_soft_step(*contact_, bodies_, c);
@@ -428,26 +427,29 @@ void World<N>::integrate_velocities(double h) {
 // Position half, with the new velocities plus the split-impulse pseudo velocities of position
 // correction: x += h v, R <- exp(-h w/2) R (exact for constant w over the step), and every
 // rotor_repair_interval steps (at the step's last position update) R is rebuilt from unit-vector factors.
+// In the soft step (track) each body's motion since the step began goes to the relax pass as it moves.
 template <int N>
-void World<N>::integrate_positions(double h, bool last_of_step) {
+void World<N>::integrate_positions(double h, bool last_of_step, bool track) {
   const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
+  track = track && !contact_->constraints.empty();
   contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) {
     Body<N>& b = bodies_[i];
     if (b.type == BodyType::Static || !contact_->awake[i]) return;
-    const contact::SolverBody<N>& pseudo = contact_->solver_bodies[i];
-    b.center += h * (b.velocity + pseudo.vp);
-    if (pseudo.wp.c.isZero(0.0)) {
+    contact::SolverBody<N>& sb = contact_->solver_bodies[i];
+    b.center += h * (b.velocity + sb.vp);
+    if (sb.wp.c.isZero(0.0)) {
       b.rotor = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
     } else {
       // The split impulse turns the body further than its spin does. Turning the angular velocity
       // along by that extra turn Q keeps it the same in the body frame, so the correction moves the
       // body without changing its kinetic energy (1/2 w . I' w would otherwise change with I').
       const Rotor<N> spun = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
-      const Rotor<N> next = exp<N>((b.angular_velocity + pseudo.wp) * (-0.5 * h)) * b.rotor;
+      const Rotor<N> next = exp<N>((b.angular_velocity + sb.wp) * (-0.5 * h)) * b.rotor;
       b.angular_velocity = rotate(next * reverse(spun), b.angular_velocity);
       b.rotor = next;
     }
     if (repair_now) b.rotor = repair(b.rotor);
+    if (track) contact::track_body_motion(sb, b);
   });
 }
 

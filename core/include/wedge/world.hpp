@@ -169,7 +169,7 @@ class World {
   void process_collisions(double h);
   void integrate_velocities(double h);
   void process_contacts(double h);
-  void integrate_positions(double h, bool last_of_step);
+  void integrate_positions(double h, bool last_of_step, bool track);
   void update_islands(double h);
   void report_contact_events();
   void clear_forces();
