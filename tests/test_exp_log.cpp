@@ -144,3 +144,22 @@ TEST_CASE("decompose finds orthogonal commuting planes that sum to B", "[ga][exp
     CHECK((sum - b).norm() < 1e-13 * (1 + b.norm()));
   }
 }
+
+TEST_CASE("cos_near_zero gives the library's cos to the bit", "[ga][exp]") {
+  // The shortcut returns 1 below 2^-27 (where cos x rounds to 1) and calls std::cos elsewhere; the
+  // library is the oracle. Log-spaced from 1e-20 to 1e-3, both signs, and the doubles at the threshold.
+  std::vector<double> xs;
+  for (double x = 1e-20; x < 1e-3; x *= 1.0 + 1.0 / 64.0) xs.insert(xs.end(), {x, -x});
+  for (double x = 0x1p-27, k = 0; k < 4; ++k) {
+    xs.insert(xs.end(), {x, -x, std::nextafter(x, 0.0), -std::nextafter(x, 0.0)});
+    x = std::nextafter(x, 1.0);
+  }
+  xs.push_back(0.0);
+  int ones = 0;
+  for (const double x : xs) {
+    INFO("x = " << x);
+    CHECK(ga::detail::cos_near_zero(x) == std::cos(x));
+    ones += std::abs(x) < 0x1p-27 ? 1 : 0;
+  }
+  CHECK(ones > 1000);  // the shortcut's range is covered, not only the library's
+}
