@@ -108,6 +108,20 @@ template <int N, class W>
   }
 }
 
+// 2D (wide.hpp): the impulse j, whose moments about the centres are ta = ra ^ j and tb = rb ^ j (as
+// jn and jt: the lever arms are not kept), to the lanes' velocities.
+template <class W>
+[[gnu::always_inline]] inline void apply_wide_impulse_2d(const WideConstraintT<2, W>& c,
+                                                         const WideInertiaT<2, W>* inertia, const W* j, const W& ta,
+                                                         const W& tb, WideVelocities<2, W>& v) {
+  for (int i = 0; i < 2; ++i) {
+    v.va[i] -= c.inv_mass_a * j[i];
+    v.vb[i] += c.inv_mass_b * j[i];
+  }
+  v.wa[0] -= (inertia ? inertia->a[0] : c.iso_a) * ta;
+  v.wb[0] += (inertia ? inertia->b[0] : c.iso_b) * tb;
+}
+
 // fn(c, points, cold, inertia, v) for each wide constraint of s.wide[begin, end), seen through LT's lanes, its
 // bodies' velocities v gathered into lanes before and written back after (the passes and the warm start).
 template <int N, class LT, class F>
@@ -155,14 +169,10 @@ Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
   return o;
 }
 
-// The sub-step's separations of wide constraint c's slots from the bodies' motion since the step began
-// (track_substep_motion): s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra, the turned
-// normal once per pair. The relax pass forms them as it reaches each wide constraint, before its
-// normals: the next solve pass sees the same positions, and a sweep of their own streamed the slots
-// once more per sub-step.
+// update_separations in 3D-6D, from the lever arms.
 template <int N, class W, class C, class P, class Cold>
-[[gnu::always_inline]] inline void update_separations(const ContactState<N>& s, const C& c, P* points,
-                                                      const Cold* cold) {
+[[gnu::always_inline]] inline void update_separations_nd(const ContactState<N>& s, const C& c, P* points,
+                                                         const Cold* cold) {
   double moved[kLanes<N>];
   Vec<N> na[kLanes<N>], nb[kLanes<N>];
   for (int l = 0; l < kLanes<N>; ++l) {
@@ -188,6 +198,43 @@ template <int N, class W, class C, class P, class Cold>
   for (int k = 0; k < c.count; ++k) {
     auto& p = points[k];
     p.separation = cold[k].base_separation + m + wide_dot<N>(wb, p.rb) - wide_dot<N>(wa, p.ra);
+  }
+}
+
+// The sub-step's separations of wide constraint c's slots from the bodies' motion since the step began
+// (track_substep_motion): s = base + n . (dp_b - dp_a) + (dq_b^T n) . rb - (dq_a^T n) . ra, the turned
+// normal once per pair. The relax pass forms them as it reaches each wide constraint, before its
+// normals: the next solve pass sees the same positions, and a sweep of their own streamed the slots
+// once more per sub-step.
+template <int N, class W, class C, class P, class Cold>
+[[gnu::always_inline]] inline void update_separations(const ContactState<N>& s, const C& c, P* points,
+                                                      const Cold* cold) {
+  if constexpr (N == 2) {
+    // n . (dq r) = jt n^T dq n - jn n^T dq t, with r = jt n - jn t (wide.hpp). (Per lane: gathering
+    // dp and dq into lanes took more instructions and time.)
+    double moved[kLanes<2>], nn_a[kLanes<2>], nt_a[kLanes<2>], nn_b[kLanes<2>], nt_b[kLanes<2>];
+    for (int l = 0; l < kLanes<2>; ++l) {
+      moved[l] = nn_a[l] = nt_a[l] = nn_b[l] = nt_b[l] = 0.0;
+      if (c.constraint[l] < 0) continue;
+      const Constraint<2>& k = s.constraints[c.constraint[l]];
+      const SolverBody<2>& a = s.solver_bodies[k.a];
+      const SolverBody<2>& b = s.solver_bodies[k.b];
+      const Vec<2> t = tangent_2d(k.normal);
+      moved[l] = k.normal.dot(b.dp - a.dp);
+      nn_a[l] = k.normal.dot(a.dq * k.normal);
+      nt_a[l] = k.normal.dot(a.dq * t);
+      nn_b[l] = k.normal.dot(b.dq * k.normal);
+      nt_b[l] = k.normal.dot(b.dq * t);
+    }
+    const W m = make_wide<W>([&](int l) { return moved[l]; });
+    const W an = make_wide<W>([&](int l) { return nn_a[l]; }), at = make_wide<W>([&](int l) { return nt_a[l]; });
+    const W bn = make_wide<W>([&](int l) { return nn_b[l]; }), bt = make_wide<W>([&](int l) { return nt_b[l]; });
+    for (int k = 0; k < c.count; ++k) {
+      auto& p = points[k];
+      p.separation = cold[k].base_separation + m + (p.jt_b * bn - p.jn_b[0] * bt) - (p.jt_a * an - p.jn_a[0] * at);
+    }
+  } else {
+    update_separations_nd<N, W>(s, c, points, cold);
   }
 }
 
@@ -247,6 +294,48 @@ struct WidePass {
   [[gnu::always_inline]] void friction(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia,
                                        WidePointT<N, W>& p, const WidePointColdT<N, W>& cold,
                                        WideVelocities<N, W>& v) const {
+    if constexpr (N == 2) {
+      friction_2d<W, M>(c, inertia, p, cold, v);
+      return;
+    } else {
+      friction_nd<W, M>(c, inertia, p, cold, v);
+    }
+  }
+
+  // 2D: one impulse along t (wide.hpp). Outside the cone, kinetic friction against the slip the point
+  // had when the step began, else the cone's end nearest the update (in one dimension the nearest point
+  // in any metric: project_to_cone's answer).
+  template <class W, class M>
+  [[gnu::always_inline]] void friction_2d(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia,
+                                          WidePointT<N, W>& p, const WidePointColdT<N, W>& cold,
+                                          WideVelocities<N, W>& v) const {
+    M held = p.normal_impulse > 0.0;
+    held |= p.tangent_impulse != 0.0;
+    const M active = (p.friction > 0.0) & held;
+    if (!any(active)) return;
+    const W t0 = c.normal[1] * -1.0, t1 = c.normal[0];
+    const W ut = (t0 * (v.vb[0] - v.va[0]) + t1 * (v.vb[1] - v.va[1])) + (p.jt_b * v.wb[0] - p.jt_a * v.wa[0]);
+    W next = p.tangent_impulse - p.tangent_mass * ut;
+    const W limit = p.friction * p.normal_impulse;
+    const M outside = active & (next * next > limit * limit);
+    if (any(outside)) {
+      // (A point with no normal impulse holds no friction, sliding or not: limit 0 gives 0 either way.)
+      const W d = t0 * cold.slip_direction[0] + t1 * cold.slip_direction[1];  // the slip's direction along t
+      const M forward = (cold.sliding > 0.0) & (ut * d > 0.0);
+      const W end = select(next < 0.0, limit * -1.0, limit);
+      next = select(outside, select(forward, d * (limit * -1.0), end), next);
+    }
+    next = select(active, next, p.tangent_impulse);
+    const W change = next - p.tangent_impulse;
+    p.tangent_impulse = next;
+    const W j[2] = {change * t0, change * t1};
+    apply_wide_impulse_2d(c, inertia, j, change * p.jt_a, change * p.jt_b, v);
+  }
+
+  template <class W, class M>
+  [[gnu::always_inline]] void friction_nd(const WideConstraintT<N, W>& c, const WideInertiaT<N, W>* inertia,
+                                          WidePointT<N, W>& p, const WidePointColdT<N, W>& cold,
+                                          WideVelocities<N, W>& v) const {
     M held = p.normal_impulse > 0.0;
     for (int i = 0; i < N; ++i) held |= p.tangent_impulse[i] != 0.0;
     const M active = (p.friction > 0.0) & held;
@@ -314,9 +403,17 @@ struct WarmStart {
       for (int k = 0; k < c.count; ++k) {
         auto& p = points[k];
         p.normal_total += p.normal_impulse;
-        W j[N];
-        for (int d = 0; d < N; ++d) j[d] = p.normal_impulse * c.normal[d] + p.tangent_impulse[d];
-        apply_wide_impulse(c, inertia, p.ra, p.rb, j, v);
+        if constexpr (N == 2) {
+          const W t0 = c.normal[1] * -1.0, t1 = c.normal[0];
+          const W j[2] = {p.normal_impulse * c.normal[0] + p.tangent_impulse * t0,
+                          p.normal_impulse * c.normal[1] + p.tangent_impulse * t1};
+          apply_wide_impulse_2d(c, inertia, j, p.normal_impulse * p.jn_a[0] + p.tangent_impulse * p.jt_a,
+                                p.normal_impulse * p.jn_b[0] + p.tangent_impulse * p.jt_b, v);
+        } else {
+          W j[N];
+          for (int d = 0; d < N; ++d) j[d] = p.normal_impulse * c.normal[d] + p.tangent_impulse[d];
+          apply_wide_impulse(c, inertia, p.ra, p.rb, j, v);
+        }
       }
     };
     visit_lanes<N, LT>(s, begin, end, warm);

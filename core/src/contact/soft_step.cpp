@@ -203,14 +203,26 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
       q.jn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_a[i]; });
       q.jn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_b[i]; });
     }
-    for (int i = 0; i < N; ++i) {
-      q.tangent_impulse[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_impulse[i]; });
+    for (int i = 0; i < N; ++i)
       cold.slip_direction[i] = lanes([i](const PointConstraint<N>& x) { return x.slip_direction[i]; });
-      q.ra[i] = lanes([i](const PointConstraint<N>& x) { return x.ra[i]; });
-      q.rb[i] = lanes([i](const PointConstraint<N>& x) { return x.rb[i]; });
+    if constexpr (N == 2) {  // friction along t alone (wide.hpp)
+      Vec<2> t[kLanes<2>];
+      for (int l = 0; l < kLanes<2>; ++l) t[l] = c[l] ? tangent_2d(c[l]->normal) : Vec<2>::Zero();
+      const auto along = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return field(*p[l], t[l], l); }); };
+      using P = PointConstraint<N>;
+      q.tangent_impulse = along([](const P& x, const Vec<2>& tl, int) { return x.tangent_impulse.dot(tl); });
+      q.tangent_mass = along([](const P& x, const Vec<2>& tl, int) { return tl.dot(x.tangent_mass * tl); });
+      q.jt_a = along([&](const P& x, const Vec<2>&, int l) { return c[l] ? c[l]->normal.dot(x.ra) : 0.0; });
+      q.jt_b = along([&](const P& x, const Vec<2>&, int l) { return c[l] ? c[l]->normal.dot(x.rb) : 0.0; });
+    } else {
+      for (int i = 0; i < N; ++i) {
+        q.tangent_impulse[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_impulse[i]; });
+        q.ra[i] = lanes([i](const PointConstraint<N>& x) { return x.ra[i]; });
+        q.rb[i] = lanes([i](const PointConstraint<N>& x) { return x.rb[i]; });
+      }
+      for (int i = 0; i < N * N; ++i)
+        q.tangent_mass[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_mass.data()[i]; });
     }
-    for (int i = 0; i < N * N; ++i)
-      q.tangent_mass[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_mass.data()[i]; });
   }
 }
 
@@ -233,9 +245,11 @@ void unpack_wide(ContactState<N>& s) {
           pair.warm_id[k] = pair.manifold.points[k].id;
           pair.warm_normal[k] = q.normal_impulse[l];
           pair.normal_impulse[k] = q.normal_total[l];
-          for (int j = 0; j < N; ++j) {
-            pair.warm_tangent[k][j] = q.tangent_impulse[j][l];
-            pair.warm_arm[k][j] = q.ra[j][l];
+          pair.warm_arm[k] = pair.arm_a[k];  // (the points' and lanes' ra)
+          if constexpr (N == 2) {
+            pair.warm_tangent[k] = q.tangent_impulse[l] * tangent_2d(c.normal);
+          } else {
+            for (int j = 0; j < N; ++j) pair.warm_tangent[k][j] = q.tangent_impulse[j][l];
           }
         }
       }
