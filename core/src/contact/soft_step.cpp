@@ -79,40 +79,47 @@ void for_each_wide(ContactState<N>& s, const Kernel& kernel) {
   }
 }
 
-// After a contact pass that began with snapshot_velocities: warm_v = (first ? 0 : warm_v) + what the
-// pass changed.
+// The soft step's warm start, body by body (warm_start_substep): after a contact pass that began with
+// snapshot_velocities, what it changed of a body's velocities is added to warm_v and warm_w
+// (add_pass_change; the first sub-step's point-by-point warm start sets them, set_warm_start), and the
+// next sub-step adds them to the fresh velocities (add_warm_start). A frozen body takes none.
 template <int N>
-void pass_change(ContactState<N>& s, bool first) {
+inline void add_pass_change(SolverBody<N>& b) {
+  if (b.frozen) return;
+  b.warm_v = b.warm_v + (b.v - b.v0);
+  b.warm_w = b.warm_w + (b.w - b.w0);
+}
+template <int N>
+inline void add_warm_start(SolverBody<N>& b) {
+  if (b.frozen) return;
+  b.v += b.warm_v;
+  b.w += b.warm_w;
+}
+template <int N>
+void set_warm_start(ContactState<N>& s) {
   for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
     SolverBody<N>& b = s.solver_bodies[i];
     if (b.frozen) return;
-    const Vec<N> dv = b.v - b.v0;
-    const Bivector<N> dw = b.w - b.w0;
-    b.warm_v = first ? dv : Vec<N>(b.warm_v + dv);
-    b.warm_w = first ? dw : b.warm_w + dw;
+    b.warm_v = b.v - b.v0;
+    b.warm_w = b.w - b.w0;
   });
 }
 
 // Every point's accumulated impulse (the last sub-step's answer) applied to the fresh velocities. In
 // the first sub-step point by point; after it body by body. The impulses act through lever arms, masses
 // and inertias fixed for the step, so what they change of a body's velocities is what the last
-// sub-step's warm start and passes changed, summed in warm_v and warm_w as they ran (pass_change): one
-// addition per body instead of a visit to every point (a tenth of a resting pile's instructions went to
-// these visits). Each point's normal_total takes its impulse in the solve pass instead (count_warm_start).
+// sub-step's warm start and passes changed, summed in warm_v and warm_w as they ran: one addition per
+// body instead of a visit to every point (a tenth of a resting pile's instructions went to these
+// visits). Each point's normal_total takes its impulse in the solve pass instead (count_warm_start).
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
   if (s.substep == 0) {
     snapshot_velocities(s);
     for_each_wide(s, WarmStart<N>{});
-    pass_change(s, true);
+    set_warm_start(s);
     return;
   }
-  for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
-    SolverBody<N>& b = s.solver_bodies[i];
-    if (b.frozen) return;
-    b.v += b.warm_v;
-    b.w += b.warm_w;
-  });
+  for_each_body(s, int(s.solver_bodies.size()), [&](int i) { add_warm_start(s.solver_bodies[i]); });
 }
 
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
@@ -352,7 +359,7 @@ void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start)
   }
 }
 
-// After a pass, in one sweep over the bodies: what it changed goes to the warm start (pass_change), the
+// After a pass, in one sweep over the bodies: what it changed goes to the warm start (add_pass_change), the
 // velocities to the bodies (store_velocities), and, after the solve pass, v0 = v for the relax pass,
 // which finds the velocities as this pass left them (the position update moves only the bodies). Each
 // of these was a sweep of its own, eleven per sub-step with the tracking of the motion: together about a
@@ -361,10 +368,7 @@ template <int N>
 void finish_pass(ContactState<N>& s, std::vector<Body<N>>& bodies, bool snapshot) {
   for_each_body(s, int(bodies.size()), [&](int i) {
     SolverBody<N>& b = s.solver_bodies[i];
-    if (!b.frozen) {
-      b.warm_v = b.warm_v + (b.v - b.v0);
-      b.warm_w = b.warm_w + (b.w - b.w0);
-    }
+    add_pass_change(b);
     if (bodies[i].is_dynamic() && s.awake[i]) {
       bodies[i].velocity = b.v;
       bodies[i].angular_velocity = b.w;
@@ -396,10 +400,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
         SolverBody<N>& b = s.solver_bodies[i];
         b.v = bodies[i].velocity;
         b.w = bodies[i].angular_velocity;
-        if (!b.frozen) {
-          b.v += b.warm_v;
-          b.w += b.warm_w;
-        }
+        add_warm_start(b);
         b.v0 = b.v;
         b.w0 = b.w;
       });
