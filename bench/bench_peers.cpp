@@ -74,20 +74,13 @@ class WedgeScene {
   std::vector<BodyId> boxes_;
 };
 
-World<2> pyramid(int rows) {  // Wedge's defaults (10 contact and 4 position iterations), sleeping off
-  World<2> w(make_settings<2>(false));
-  scenes::add_ground<2>(w, kFriction);
-  scenes::add_box_pyramid<2>(w, rows, kHalf, kFriction);
-  return w;
-}
-
 // Each scene with 1 and 2 threads: state.range(1) (Pyramid2D) or range(0) is the thread count.
 void Pyramid2D_Wedge(benchmark::State& state) {
-  WedgeScene<2> scene(pyramid(int(state.range(0))), int(state.range(1)));
+  WedgeScene<2> scene(peers_pyramid(int(state.range(0))), int(state.range(1)));
   run(state, scene, kPyramid);
 }
 void Pyramid2D_Wedge_substeps4(benchmark::State& state) {
-  WedgeScene<2> scene(pyramid(int(state.range(0))), 1, 4);
+  WedgeScene<2> scene(peers_pyramid(int(state.range(0))), 1, 4);
   run(state, scene, kPyramid);
 }
 void Pile3D_Wedge(benchmark::State& state) {
@@ -134,13 +127,13 @@ const bool registered_wedge = [] {
 
 #if WEDGE_PEER_BOX2D_V3
 void Pyramid2D_Box2Dv3(benchmark::State& state) {
-  Box2DV3Scene scene(pyramid(int(state.range(0))), false, int(state.range(1)));
+  Box2DV3Scene scene(peers_pyramid(int(state.range(0))), false, int(state.range(1)));
   run(state, scene, kPyramid);
 }
 // Box2D v3 at Wedge's defaults, 8 sub-steps and a 60 Hz contact spring: the stiffness that keeps the
 // 100-row pyramid's top within issue 15's 0.25 m (at its own 4 sub-steps and 30 Hz it sinks 0.72 m).
 void Pyramid2D_Box2Dv3_substeps8_60Hz(benchmark::State& state) {
-  Box2DV3Scene scene(pyramid(int(state.range(0))), false, 1, 8, 60.0f);
+  Box2DV3Scene scene(peers_pyramid(int(state.range(0))), false, 1, 8, 60.0f);
   run(state, scene, kPyramid);
 }
 const bool registered_box2d = [] {

@@ -18,13 +18,6 @@ namespace {
 using namespace wedge;
 using namespace wedge::bench;
 
-World<2> pyramid(int rows) {  // as wedge_bench_peers
-  World<2> w(make_settings<2>(false));
-  scenes::add_ground<2>(w, kFriction);
-  scenes::add_box_pyramid<2>(w, rows, kHalf, kFriction);
-  return w;
-}
-
 // Steps the scene for `seconds` at 60 Hz; prints the top's sink and the fastest box after 2 s.
 template <typename Step, typename Top, typename Fastest>
 void stand(const std::string& name, int seconds, Step step, Top top, Fastest fastest) {
@@ -50,11 +43,11 @@ int main(int argc, char** argv) {
   std::printf("%d-row 2D pyramid, %d s at 60 Hz, sleeping off (bar: sink < 0.25 m, < 0.5 m/s after 2 s)\n", rows,
               seconds);
   {
-    World<2> w = pyramid(rows);
+    World<2> w = peers_pyramid(rows);
     stand("Wedge, defaults (8 sub-steps, 60 Hz)", seconds, [&] { w.step(kDt); },
           [&] { return w.bodies().back().center[1]; }, [&] { return max_speed(w); });
   }
-  const World<2> layout = pyramid(rows);
+  const World<2> layout = peers_pyramid(rows);
   const auto box2d = [&](const char* name, int substeps, float hertz) {
     Box2DV3Scene b(layout, false, 1, substeps, hertz);
     stand(name, seconds, [&] { b.step(); }, [&] { return b.height(b.count() - 1); }, [&] { return b.max_speed(); });

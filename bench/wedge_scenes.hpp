@@ -42,6 +42,13 @@ inline World<2> wedge_pyramid(int rows, bool sleep) {
   scenes::add_box_pyramid<2>(w, rows, kHalf, kFriction);
   return w;
 }
+// The peers' 2D pyramid (wedge_bench_peers, wedge_peers_stand): Wedge's defaults, sleeping off.
+inline World<2> peers_pyramid(int rows) {
+  World<2> w(make_settings<2>(false));
+  scenes::add_ground<2>(w, kFriction);
+  scenes::add_box_pyramid<2>(w, rows, kHalf, kFriction);
+  return w;
+}
 template <int N>
 World<N> wedge_pile(int count, bool sleep, std::uint64_t seed = 1) {
   World<N> w(make_settings<N>(sleep));
