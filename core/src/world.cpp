@@ -376,13 +376,40 @@ void World<N>::soft_step(double h) {
   const ContactSettings& c = settings_.contact;
   const double hs = h / c.substeps;
   contact::prepare_soft_step(*contact_, bodies_, c, hs);
+  prepare_substep_velocities(hs);
   for (int i = 0; i < c.substeps; ++i) {
-    integrate_velocities(hs);
-    contact::solve_substep(*contact_, bodies_, c, hs, true);
+    for (const int b : contact_->integrate_apart) {
+      contact::SolverBody<N>& sb = contact_->solver_bodies[b];
+      integrate_velocity(bodies_[b], hs, sb.v, sb.w);
+    }
+    contact::solve_substep(*contact_, bodies_, c, hs, true);  // (the others' velocities first)
     integrate_positions(hs, i == c.substeps - 1, true);
     contact::solve_substep(*contact_, bodies_, c, hs, false);
   }
   contact::finish_soft_step(*contact_, bodies_, c);
+}
+
+// The soft step's velocities live in the solver bodies through its sub-steps (find_contacts loaded
+// them), which integrate them: with neither a torque nor a gyroscopic term, a sub-step's integration is
+// v = (v + dv) decay_v and w = w decay_w with the same numbers every sub-step, worked out here once
+// (integrate_velocity's arithmetic, so the same bits) and run by the solve sub-step in its first sweep
+// (contact::integrate_substep_velocity). The bodies it cannot do are listed for integrate_velocity.
+template <int N>
+void World<N>::prepare_substep_velocities(double h) {
+  contact::ContactState<N>& s = *contact_;
+  contact::for_each_body(s, int(bodies_.size()), [&](int i) {
+    const Body<N>& b = bodies_[i];
+    contact::SolverBody<N>& sb = s.solver_bodies[i];
+    sb.integrates = false;
+    if (!contact::moves(s, bodies_, i) || velocity_needs_body(b)) return;
+    sb.integrates = true;
+    sb.dv = h * (settings_.gravity + b.force * b.inv_mass);
+    sb.decay_v = 1.0 / (1.0 + h * b.linear_drag);
+    sb.decay_w = 1.0 / (1.0 + h * b.angular_drag);
+  });
+  s.integrate_apart.clear();
+  for (int i = 0; i < int(bodies_.size()); ++i)
+    if (contact::moves(s, bodies_, i) && velocity_needs_body(bodies_[i])) s.integrate_apart.push_back(i);
 }
 template <int N>
 void World<N>::process_collisions(double h) {
@@ -408,44 +435,56 @@ void World<N>::integrate_velocities(double h) {
   contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) {
     Body<N>& b = bodies_[i];
     if (!b.is_dynamic() || !contact_->awake[i]) return;
-    b.velocity += h * (settings_.gravity + b.force * b.inv_mass);
-    // In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
-    // Without a torque, a body whose inertia is isotropic (a cube, a ball) keeps its w exactly: w x I w
-    // = 0, so the frame change and the gyroscopic solve are skipped (most of a pile's bodies).
-    const bool torque = !b.torque.c.isZero(0.0);
-    if (torque || (settings_.gyroscopic && !linalg::is_isotropic(b.inertia))) {
-      Bivector<N> wb = rotate_inverse(b.rotor, b.angular_velocity);
-      if (torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
-      if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, settings_.gyroscopic_method);
-      b.angular_velocity = rotate(b.rotor, wb);
-    }
-    b.velocity *= 1.0 / (1.0 + h * b.linear_drag);
-    b.angular_velocity *= 1.0 / (1.0 + h * b.angular_drag);
+    integrate_velocity(b, h, b.velocity, b.angular_velocity);
   });
+}
+// Body b's velocities v, w (its own, or the soft step's solver body's) over h.
+template <int N>
+void World<N>::integrate_velocity(const Body<N>& b, double h, Vec<N>& v, Bivector<N>& w) const {
+  v += h * (settings_.gravity + b.force * b.inv_mass);
+  if (velocity_needs_body(b)) {
+    const bool torque = !b.torque.c.isZero(0.0);
+    Bivector<N> wb = rotate_inverse(b.rotor, w);
+    if (torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
+    if (settings_.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, settings_.gyroscopic_method);
+    w = rotate(b.rotor, wb);
+  }
+  v *= 1.0 / (1.0 + h * b.linear_drag);
+  w *= 1.0 / (1.0 + h * b.angular_drag);
+}
+// In the body frame, where the inertia is constant: w_b += h I^-1 ~R tau R, then the gyroscopic step.
+// Without a torque, a body whose inertia is isotropic (a cube, a ball) keeps its w exactly: w x I w = 0,
+// so the frame change and the gyroscopic solve are skipped (most of a pile's bodies).
+template <int N>
+bool World<N>::velocity_needs_body(const Body<N>& b) const {
+  return !b.torque.c.isZero(0.0) || (settings_.gyroscopic && !linalg::is_isotropic(b.inertia));
 }
 
 // Position half, with the new velocities plus the split-impulse pseudo velocities of position
 // correction: x += h v, R <- exp(-h w/2) R (exact for constant w over the step), and every
 // rotor_repair_interval steps (at the step's last position update) R is rebuilt from unit-vector factors.
-// In the soft step (track) each body's motion since the step began goes to the relax pass as it moves.
+// In the soft step (soft) the velocities are the solver bodies', and each body's motion since the step
+// began goes to the relax pass as it moves.
 template <int N>
-void World<N>::integrate_positions(double h, bool last_of_step, bool track) {
+void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
   const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
-  track = track && !contact_->constraints.empty();
+  const bool track = soft && !contact_->constraints.empty();
   contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) {
     Body<N>& b = bodies_[i];
     if (b.type == BodyType::Static || !contact_->awake[i]) return;
     contact::SolverBody<N>& sb = contact_->solver_bodies[i];
-    b.center += h * (b.velocity + sb.vp);
+    Vec<N>& v = soft ? sb.v : b.velocity;  // (the soft step's velocities are the solver bodies')
+    Bivector<N>& w = soft ? sb.w : b.angular_velocity;
+    b.center += h * (v + sb.vp);
     if (sb.wp.c.isZero(0.0)) {
-      b.rotor = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
+      b.rotor = exp<N>(w * (-0.5 * h)) * b.rotor;
     } else {
       // The split impulse turns the body further than its spin does. Turning the angular velocity
       // along by that extra turn Q keeps it the same in the body frame, so the correction moves the
       // body without changing its kinetic energy (1/2 w . I' w would otherwise change with I').
-      const Rotor<N> spun = exp<N>(b.angular_velocity * (-0.5 * h)) * b.rotor;
-      const Rotor<N> next = exp<N>((b.angular_velocity + sb.wp) * (-0.5 * h)) * b.rotor;
-      b.angular_velocity = rotate(next * reverse(spun), b.angular_velocity);
+      const Rotor<N> spun = exp<N>(w * (-0.5 * h)) * b.rotor;
+      const Rotor<N> next = exp<N>((w + sb.wp) * (-0.5 * h)) * b.rotor;
+      w = rotate(next * reverse(spun), w);
       b.rotor = next;
     }
     if (repair_now) b.rotor = repair(b.rotor);

@@ -84,6 +84,11 @@ struct SolverBody {
   Bivector<N> w{};
   Vec<N> v0 = Vec<N>::Zero();  // velocities before the stage (its energy check) or soft-step pass
   Bivector<N> w0{};
+  // Soft step: a sub-step's velocity integration, the same for each of the step's sub-steps (World::
+  // soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
+  Vec<N> dv = Vec<N>::Zero();
+  double decay_v = 1.0, decay_w = 1.0;
+  bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else World does it)
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
   double inv_mass = 0.0;
@@ -238,6 +243,7 @@ struct ContactState {
 
   // Islands and sleep, per body.
   std::vector<char> awake;
+  std::vector<int> integrate_apart;  // soft step: moving bodies whose velocities World integrates itself
   std::vector<double> sleep_time;  // s spent below the sleep speed
   std::vector<int> island;         // label (smallest body index) of the island the body was last in, or -1
   std::vector<int> union_parent, bfs_queue, adjacency_start, adjacency;
@@ -369,8 +375,10 @@ template <int N>
 void warm_start_grabs(ContactState<N>& state);
 template <int N>
 double solve_grabs(ContactState<N>& state);
-// soft_step.cpp: the SoftStep solver's stages; World::step runs, per sub-step, integrate_velocities,
-// solve_substep(use_bias = true), integrate_positions (with track_body_motion) and solve_substep(false).
+// soft_step.cpp: the SoftStep solver's stages; World::step runs, per sub-step, the velocity integration
+// of the bodies in integrate_apart, solve_substep(use_bias = true) (the others' velocity integration
+// first, integrate_substep_velocity), integrate_positions (with track_body_motion) and
+// solve_substep(false).
 template <int N>
 void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h);
@@ -386,6 +394,16 @@ template <int N>
 inline void track_body_motion(SolverBody<N>& sb, const Body<N>& body) {
   sb.dp = body.center - sb.x0;
   sb.dq = to_matrix(body.rotor) * sb.r0_inverse;
+}
+// A body's velocity integration in a sub-step (World::integrate_velocities' arithmetic, from the step's
+// constants): the solve sub-step runs it in its first sweep over the bodies. Through the sub-steps the
+// velocities live in the solver bodies alone; finish_soft_step stores them to the bodies.
+template <int N>
+inline void integrate_substep_velocity(SolverBody<N>& b) {
+  if (!b.integrates) return;
+  b.v += b.dv;
+  b.v *= b.decay_v;
+  b.w *= b.decay_w;
 }
 template <int N>
 void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings);

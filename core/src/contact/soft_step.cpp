@@ -359,20 +359,16 @@ void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start)
   }
 }
 
-// After a pass, in one sweep over the bodies: what it changed goes to the warm start (add_pass_change), the
-// velocities to the bodies (store_velocities), and, after the solve pass, v0 = v for the relax pass,
-// which finds the velocities as this pass left them (the position update moves only the bodies). Each
-// of these was a sweep of its own, eleven per sub-step with the tracking of the motion: together about a
-// tenth of a 2D pyramid's step.
+// After a pass, in one sweep over the solver bodies: what it changed goes to the warm start
+// (add_pass_change), and, after the solve pass, v0 = v for the relax pass, which finds the velocities as
+// this pass left them (the position update moves only the bodies). Each of these was a sweep of its own,
+// eleven per sub-step with the tracking of the motion: together about a tenth of a 2D pyramid's step.
+// (The velocities stay here until the step ends: integrate_substep_velocity.)
 template <int N>
-void finish_pass(ContactState<N>& s, std::vector<Body<N>>& bodies, bool snapshot) {
-  for_each_body(s, int(bodies.size()), [&](int i) {
+void finish_pass(ContactState<N>& s, bool snapshot) {
+  for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
     SolverBody<N>& b = s.solver_bodies[i];
     add_pass_change(b);
-    if (bodies[i].is_dynamic() && s.awake[i]) {
-      bodies[i].velocity = b.v;
-      bodies[i].angular_velocity = b.w;
-    }
     if (snapshot) {
       b.v0 = b.v;
       b.w0 = b.w;
@@ -386,20 +382,22 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   bool grabs = false;
   if (use_bias) {
     grabs = prepare_grabs(s, bodies, h);
+    if ((s.constraints.empty() && !grabs) || grabs || s.substep == 0) {
+      for_each_body(s, int(s.solver_bodies.size()),
+                    [&](int i) { integrate_substep_velocity(s.solver_bodies[i]); });
+    }
     if (s.constraints.empty() && !grabs) return;
     if (grabs || s.substep == 0) {
-      load_velocities(s, bodies);
       if (grabs) warm_start_grabs(s);
       warm_start_substep(s);
       if (grabs) solve_grabs(s);
       // (The grabs' impulses are left out of warm_v: they warm start on their own.)
       snapshot_velocities(s);
     } else {
-      // load_velocities, warm_start_substep and snapshot_velocities in one sweep.
-      for_each_body(s, int(bodies.size()), [&](int i) {
+      // integrate_substep_velocity, warm_start_substep and snapshot_velocities in one sweep.
+      for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
         SolverBody<N>& b = s.solver_bodies[i];
-        b.v = bodies[i].velocity;
-        b.w = bodies[i].angular_velocity;
+        integrate_substep_velocity(b);
         add_warm_start(b);
         b.v0 = b.v;
         b.w0 = b.w;
@@ -414,7 +412,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
     }  // (else v0 = v since the solve pass: finish_pass)
   }
   solve_contacts(s, settings, h, use_bias, use_bias && s.substep > 0);
-  finish_pass(s, bodies, use_bias);
+  finish_pass(s, use_bias);
   if (use_bias) ++s.substep;
 }
 
@@ -431,10 +429,10 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
 
 template <int N>
 void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings) {
-  if (s.constraints.empty()) return;
-  unpack_wide(s);
-  load_velocities(s, bodies);
-  apply_restitution(s, settings);
+  if (!s.constraints.empty()) {
+    unpack_wide(s);
+    apply_restitution(s, settings);
+  }
   store_velocities(s, bodies);
 }
 
