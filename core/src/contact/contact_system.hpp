@@ -78,21 +78,28 @@ struct Pair {
 };
 
 // A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
+// What the soft step's sweeps over the bodies read comes first, in as few cache lines as it fits (a
+// tall pyramid's bodies do not fit the cache): the passes gather v and w, the sweeps between them
+// these and the warm start, the snapshot and the velocity integration.
 template <int N>
 struct SolverBody {
   Vec<N> v = Vec<N>::Zero();
   Bivector<N> w{};
+  bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
+  bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else World does it)
+  // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
+  // next sub-step (soft_step.cpp, warm_start_substep).
+  Vec<N> warm_v = Vec<N>::Zero();
+  Bivector<N> warm_w{};
   Vec<N> v0 = Vec<N>::Zero();  // velocities before the stage (its energy check) or soft-step pass
   Bivector<N> w0{};
   // Soft step: a sub-step's velocity integration, the same for each of the step's sub-steps (World::
   // soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
   Vec<N> dv = Vec<N>::Zero();
   double decay_v = 1.0, decay_w = 1.0;
-  bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else World does it)
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
   double inv_mass = 0.0;
-  bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
   // The inverse inertia is iso_inv_inertia times the identity in every frame (a body whose inertia is
   // the same about every plane: a cube, a ball). The impulse passes then scale r ^ j instead of
   // multiplying it by the matrix, and inv_inertia is that exactly.
@@ -107,10 +114,6 @@ struct SolverBody {
   Mat<N> r0_inverse = Mat<N>::Identity();
   Vec<N> dp = Vec<N>::Zero();
   Mat<N> dq = Mat<N>::Identity();
-  // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
-  // next sub-step (soft_step.cpp, warm_start_substep).
-  Vec<N> warm_v = Vec<N>::Zero();
-  Bivector<N> warm_w{};
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
