@@ -82,7 +82,7 @@ struct Pair {
 // tall pyramid's bodies do not fit the cache): the passes gather v and w, the sweeps between them
 // these and the warm start, the snapshot and the velocity integration.
 template <int N>
-struct SolverBody {
+struct alignas(64) SolverBody {
   Vec<N> v = Vec<N>::Zero();
   Bivector<N> w{};
   bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
@@ -97,8 +97,15 @@ struct SolverBody {
   // soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
   Vec<N> dv = Vec<N>::Zero();
   double decay_v = 1.0, decay_w = 1.0;
+  // Then what the position update reads and writes of it (World::integrate_positions).
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
+  // Soft step: where the body was when the step began, and how far it has moved and turned since
+  // (the turn as a matrix, dq = R R0^-1), so the sub-steps see each contact's current separation.
+  Vec<N> x0 = Vec<N>::Zero();
+  Mat<N> r0_inverse = Mat<N>::Identity();
+  Vec<N> dp = Vec<N>::Zero();
+  Mat<N> dq = Mat<N>::Identity();
   double inv_mass = 0.0;
   // The inverse inertia is iso_inv_inertia times the identity in every frame (a body whose inertia is
   // the same about every plane: a cube, a ball). The impulse passes then scale r ^ j instead of
@@ -108,12 +115,6 @@ struct SolverBody {
   BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
   int level = 0;                               // contact-graph level (shock propagation)
   std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
-  // Soft step: where the body was when the step began, and how far it has moved and turned since
-  // (the turn as a matrix, dq = R R0^-1), so the sub-steps see each contact's current separation.
-  Vec<N> x0 = Vec<N>::Zero();
-  Mat<N> r0_inverse = Mat<N>::Identity();
-  Vec<N> dp = Vec<N>::Zero();
-  Mat<N> dq = Mat<N>::Identity();
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
