@@ -169,6 +169,15 @@ Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
   return o;
 }
 
+// Lane l's normal and bodies, from the wide constraint's header (copies of its Constraint's, which the
+// passes then need not read: 88 bytes more per 2D constraint and relax pass to stream).
+template <int N, class C>
+[[gnu::always_inline]] inline Vec<N> lane_normal(const C& c, int l) {
+  Vec<N> n;
+  for (int i = 0; i < N; ++i) n[i] = c.normal[i][l];
+  return n;
+}
+
 // update_separations in 3D-6D, from the lever arms.
 template <int N, class W, class C, class P, class Cold>
 [[gnu::always_inline]] inline void update_separations_nd(const ContactState<N>& s, const C& c, P* points,
@@ -182,12 +191,12 @@ template <int N, class W, class C, class P, class Cold>
       nb[l].setZero();
       continue;
     }
-    const Constraint<N>& k = s.constraints[c.constraint[l]];
-    const SolverBody<N>& a = s.solver_bodies[k.a];
-    const SolverBody<N>& b = s.solver_bodies[k.b];
-    moved[l] = k.normal.dot(b.dp - a.dp);
-    na[l] = transpose_times(a.dq, k.normal);
-    nb[l] = transpose_times(b.dq, k.normal);
+    const Vec<N> normal = lane_normal<N>(c, l);
+    const SolverBody<N>& a = s.solver_bodies[c.a[l]];
+    const SolverBody<N>& b = s.solver_bodies[c.b[l]];
+    moved[l] = normal.dot(b.dp - a.dp);
+    na[l] = transpose_times(a.dq, normal);
+    nb[l] = transpose_times(b.dq, normal);
   }
   const W m = make_wide<W>([&](int l) { return moved[l]; });
   W wa[N], wb[N];
@@ -216,15 +225,15 @@ template <int N, class W, class C, class P, class Cold>
     for (int l = 0; l < kLanes<2>; ++l) {
       moved[l] = nn_a[l] = nt_a[l] = nn_b[l] = nt_b[l] = 0.0;
       if (c.constraint[l] < 0) continue;
-      const Constraint<2>& k = s.constraints[c.constraint[l]];
-      const SolverBody<2>& a = s.solver_bodies[k.a];
-      const SolverBody<2>& b = s.solver_bodies[k.b];
-      const Vec<2> t = tangent_2d(k.normal);
-      moved[l] = k.normal.dot(b.dp - a.dp);
-      nn_a[l] = k.normal.dot(a.dq * k.normal);
-      nt_a[l] = k.normal.dot(a.dq * t);
-      nn_b[l] = k.normal.dot(b.dq * k.normal);
-      nt_b[l] = k.normal.dot(b.dq * t);
+      const Vec<2> normal = lane_normal<2>(c, l);
+      const SolverBody<2>& a = s.solver_bodies[c.a[l]];
+      const SolverBody<2>& b = s.solver_bodies[c.b[l]];
+      const Vec<2> t = tangent_2d(normal);
+      moved[l] = normal.dot(b.dp - a.dp);
+      nn_a[l] = normal.dot(a.dq * normal);
+      nt_a[l] = normal.dot(a.dq * t);
+      nn_b[l] = normal.dot(b.dq * normal);
+      nt_b[l] = normal.dot(b.dq * t);
     }
     const W m = make_wide<W>([&](int l) { return moved[l]; });
     const W an = make_wide<W>([&](int l) { return nn_a[l]; }), at = make_wide<W>([&](int l) { return nt_a[l]; });
