@@ -169,8 +169,9 @@ Vec<N> transpose_times(const Mat<N>& m, const Vec<N>& v) {
   return o;
 }
 
-// Lane l's normal and bodies, from the wide constraint's header (copies of its Constraint's, which the
-// passes then need not read: 88 bytes more per 2D constraint and relax pass to stream).
+// Lane l's normal, from the wide constraint's header. The separations take it and the lane's bodies
+// (c.a, c.b) from there, copies of its Constraint's, which they then need not read: 88 bytes more per
+// 2D constraint and relax pass to stream.
 template <int N, class C>
 [[gnu::always_inline]] inline Vec<N> lane_normal(const C& c, int l) {
   Vec<N> n;

@@ -382,12 +382,12 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   bool grabs = false;
   if (use_bias) {
     grabs = prepare_grabs(s, bodies, h);
-    if ((s.constraints.empty() && !grabs) || grabs || s.substep == 0) {
-      for_each_body(s, int(s.solver_bodies.size()),
-                    [&](int i) { integrate_substep_velocity(s.solver_bodies[i]); });
-    }
+    // After the first sub-step, without grabs, the velocity update joins the warm start's sweep.
+    const bool fused = !s.constraints.empty() && !grabs && s.substep > 0;
+    if (!fused)
+      for_each_body(s, int(s.solver_bodies.size()), [&](int i) { integrate_substep_velocity(s.solver_bodies[i]); });
     if (s.constraints.empty() && !grabs) return;
-    if (grabs || s.substep == 0) {
+    if (!fused) {
       if (grabs) warm_start_grabs(s);
       warm_start_substep(s);
       if (grabs) solve_grabs(s);
