@@ -163,3 +163,23 @@ TEST_CASE("cos_near_zero gives the library's cos to the bit", "[ga][exp]") {
   }
   CHECK(ones > 1000);  // the shortcut's range is covered, not only the library's
 }
+
+TEST_CASE("cos_near_zero's series gives the library's cos to the bit on 2 million random x", "[ga][exp]") {
+  // The series branch, 2^-27 <= |x| < 1e-4, rounds once (1 - y with y within 1e-24 of 1 - cos x), so
+  // it can differ from a correctly rounded cos only where cos x lies within 1e-24 of a midpoint between
+  // doubles: about 2e-8 of x. std::cos is the oracle; x is log-uniform over the branch, both signs.
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> exponent(std::log(0x1p-27), std::log(1e-4));
+  int differ = 0, tested = 0;
+  for (int i = 0; i < 2000000; ++i) {
+    const double x = (i % 2 ? -1.0 : 1.0) * std::exp(exponent(rng));
+    if (std::abs(x) < 0x1p-27 || std::abs(x) >= 1e-4) continue;
+    ++tested;
+    if (ga::detail::cos_near_zero(x) != std::cos(x)) {
+      ++differ;
+      UNSCOPED_INFO("x = " << x);
+    }
+  }
+  CHECK(tested > 1900000);
+  CHECK(differ == 0);
+}
