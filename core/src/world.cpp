@@ -469,7 +469,9 @@ template <int N>
 void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
   const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
   const bool track = soft && !contact_->constraints.empty();
-  contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) {
+  // (flatten: exp, to_matrix and the rotation's product inline; as calls they were 6% of a 2D
+  // pyramid's step.)
+  contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) __attribute__((flatten)) {
     Body<N>& b = bodies_[i];
     if (b.type == BodyType::Static || !contact_->awake[i]) return;
     contact::SolverBody<N>& sb = contact_->solver_bodies[i];
