@@ -126,8 +126,10 @@ double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
 
 // One pair's manifold: recycled while the bodies barely move relative to each other, else collided with
 // the speculative margin (below). Reads the bodies, writes only the pair.
+// (flatten: the bodies' rotation matrices and the recycling test inline, 1% of a 2D pyramid's
+// instructions as calls.)
 template <int N>
-void collide_pair(const ContactState<N>& s, Pair<N>& p, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+[[gnu::flatten]] void collide_pair(const ContactState<N>& s, Pair<N>& p, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                   const ContactSettings& settings, double h) {
   const Body<N>& a = bodies[p.a];
   const Body<N>& b = bodies[p.b];
