@@ -129,8 +129,8 @@ double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
 // (flatten: the bodies' rotation matrices and the recycling test inline, 1% of a 2D pyramid's
 // instructions as calls.)
 template <int N>
-[[gnu::flatten]] void collide_pair(const ContactState<N>& s, Pair<N>& p, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
-                  const ContactSettings& settings, double h) {
+[[gnu::flatten]] void collide_pair(const ContactState<N>& s, Pair<N>& p, const std::vector<Body<N>>& bodies,
+                                   const Shapes<N>& shapes, const ContactSettings& settings, double h) {
   const Body<N>& a = bodies[p.a];
   const Body<N>& b = bodies[p.b];
   const double reach = h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
