@@ -65,6 +65,7 @@ class Box2DV3Scene {
   }
   double height(std::size_t k) const { return double(b2Body_GetPosition(boxes_[k]).y); }
   std::size_t count() const { return boxes_.size(); }
+  b2WorldId world() const { return world_; }  // (for b2World_GetProfile: peers_profile.cpp)
 
  private:
   int substeps_;

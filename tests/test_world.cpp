@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <new>
 #include <random>
 #include <vector>
@@ -396,4 +397,81 @@ TEST_CASE("World::step makes no heap allocation, in any dimension", "[world]") {
   CHECK(allocations_in_steps<4>() == 0);
   CHECK(allocations_in_steps<5>() == 0);
   CHECK(allocations_in_steps<6>() == 0);
+}
+
+namespace {
+// A stack of `count` unit boxes resting on the ground (the half-space x_1 <= 0), gravity along -e_1.
+template <int N>
+World<N> resting_stack(ContactSolver solver, int count) {
+  WorldSettings<N> s;
+  s.gravity = Vec<N>::Zero();
+  s.gravity[1] = -9.81;
+  s.contact.solver = solver;
+  World<N> world(s);
+  BodyDef<N> ground;
+  ground.type = BodyType::Static;
+  ground.shape = std::make_shared<const Shape<N>>(Shape<N>::halfspace(Vec<N>::Unit(1), 0.0));
+  world.add_body(ground);
+  for (int i = 0; i < count; ++i) {
+    BodyDef<N> d = box_body<N>(Vec<N>::Constant(1.0));
+    d.shape = std::make_shared<const Shape<N>>(Shape<N>::box(Vec<N>::Constant(0.5)));
+    d.position[1] = 0.5 + i;
+    world.add_body(d);
+  }
+  return world;
+}
+
+// The profile's stages are disjoint laps of one steady clock inside the step's own lap: none negative,
+// their sum no more than the step (1 ns for the sums' rounding). Which stages ran follows the solver.
+template <int N>
+void check_profile(ContactSolver solver) {
+  World<N> world = resting_stack<N>(solver, 3);
+  const StepProfile& p = world.profile();
+  CHECK(p.step == 0.0);  // nothing before the first step
+  for (int i = 0; i < 30; ++i) world.step(1.0 / 60);
+  const double stages[] = {p.broad_phase, p.narrow_phase,  p.constraints, p.solve, p.integrate_positions,
+                           p.relax,       p.finish,        p.islands,     p.events};
+  double sum = 0.0;
+  for (const double t : stages) {
+    CHECK(t >= 0.0);
+    sum += t;
+  }
+  CHECK(p.step > 0.0);
+  CHECK(sum <= p.step + 1e-9);
+  // Every box touches (3 pairs with points): the narrow phase, the constraints and the solve ran.
+  CHECK(world.contacts().size() == 3);
+  CHECK(p.narrow_phase > 0.0);
+  CHECK(p.constraints > 0.0);
+  CHECK(p.solve > 0.0);
+  CHECK(p.integrate_positions > 0.0);
+  if (solver == ContactSolver::SoftStep) {
+    CHECK(p.relax > 0.0);
+    CHECK(p.finish > 0.0);
+  } else {  // the paper's solver has neither stage
+    CHECK(p.relax == 0.0);
+    CHECK(p.finish == 0.0);
+  }
+}
+}  // namespace
+
+TEST_CASE("World::profile times the last step's stages, which lie within the step", "[world][profile]") {
+  check_profile<2>(ContactSolver::SoftStep);
+  check_profile<3>(ContactSolver::SoftStep);
+  check_profile<4>(ContactSolver::SoftStep);
+  check_profile<3>(ContactSolver::Paper);
+}
+
+TEST_CASE("World::profile changes no result: the same steps give the same state, read or not", "[world][profile]") {
+  World<2> read = resting_stack<2>(ContactSolver::SoftStep, 4), unread = read;
+  double seen = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    read.step(1.0 / 60);
+    seen += read.profile().step;
+    unread.step(1.0 / 60);
+  }
+  CHECK(seen > 0.0);
+  CHECK(read.state_hash() == unread.state_hash());
+  // A copy carries the last step's profile with it.
+  const World<2> copy = read;
+  CHECK(copy.profile().step == read.profile().step);
 }

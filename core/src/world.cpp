@@ -142,6 +142,7 @@ World<N>::World(const World& o)
       user_data_(o.user_data_),
       contact_(std::make_unique<contact::ContactState<N>>(*o.contact_)),
       steps_(o.steps_),
+      profile_(o.profile_),
       time_(o.time_),
       time_error_(o.time_error_) {}
 template <int N>
@@ -347,34 +348,44 @@ void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
 
 template <int N>
 void World<N>::step(double h) {
+  StageClock total, clock;
+  profile_ = StepProfile{};
   contact_->workers.resize(settings_.workers);
   find_contacts(h);
+  clock.lap();
   if (settings_.contact.solver == ContactSolver::SoftStep) {
-    soft_step(h);
+    soft_step(h);  // (times its own stages)
   } else {
     process_collisions(h);
     integrate_velocities(h);
     process_contacts(h);
+    profile_.solve = clock.lap();
     integrate_positions(h, true, false);
+    profile_.integrate_positions = clock.lap();
   }
+  clock.lap();
   update_islands(h);
+  profile_.islands = clock.lap();
   report_contact_events();
+  profile_.events = clock.lap();
   clear_forces();
   ++steps_;
   // Neumaier's compensated sum: 600 steps of 1/120 s come to 5 s exactly, not 4.99999999999998.
   const double t = time_ + h;
   time_error_ += std::abs(time_) >= h ? (time_ - t) + h : (h - t) + time_;
   time_ = t;
+  profile_.step = total.lap();
 }
 
 template <int N>
 void World<N>::find_contacts(double h) {
-  contact::find_contacts(*contact_, bodies_, shapes_, materials_, settings_.contact, h);
+  contact::find_contacts(*contact_, bodies_, shapes_, materials_, settings_.contact, h, &profile_);
 }
 template <int N>
 void World<N>::soft_step(double h) {
   const ContactSettings& c = settings_.contact;
   const double hs = h / c.substeps;
+  StageClock clock;
   contact::prepare_soft_step(*contact_, bodies_, c, hs);
   prepare_substep_velocities(hs);
   for (int i = 0; i < c.substeps; ++i) {
@@ -383,10 +394,14 @@ void World<N>::soft_step(double h) {
       integrate_velocity(bodies_[b], hs, sb.v, sb.w);
     }
     contact::solve_substep(*contact_, bodies_, c, hs, true);  // (the others' velocities first)
+    profile_.solve += clock.lap();
     integrate_positions(hs, i == c.substeps - 1, true);
+    profile_.integrate_positions += clock.lap();
     contact::solve_substep(*contact_, bodies_, c, hs, false);
+    profile_.relax += clock.lap();
   }
   contact::finish_soft_step(*contact_, bodies_, c);
+  profile_.finish = clock.lap();
 }
 
 // The soft step's velocities live in the solver bodies through its sub-steps (find_contacts loaded

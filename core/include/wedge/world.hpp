@@ -29,6 +29,7 @@
 #include "wedge/body.hpp"
 #include "wedge/contact.hpp"
 #include "wedge/grab.hpp"
+#include "wedge/profile.hpp"
 
 namespace wedge {
 
@@ -147,6 +148,8 @@ class World {
 
   void step(double h);
   std::int64_t step_count() const { return steps_; }
+  // Where the last step's time went, stage by stage (wedge/profile.hpp); zero before the first step.
+  const StepProfile& profile() const { return profile_; }
   double time() const { return time_ + time_error_; }  // s: the sum of the steps taken
 
   // Diagnostics over dynamic bodies (static and kinematic ones carry no momentum).
@@ -187,6 +190,7 @@ class World {
   std::vector<std::uint64_t> user_data_;
   std::unique_ptr<contact::ContactState<N>> contact_;
   std::int64_t steps_ = 0;
+  StepProfile profile_;
   double time_ = 0.0, time_error_ = 0.0;  // (compensated summation)
 };
 

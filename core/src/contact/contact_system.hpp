@@ -25,6 +25,7 @@
 #include "wedge/collision/broadphase.hpp"
 #include "wedge/contact.hpp"
 #include "wedge/grab.hpp"
+#include "wedge/profile.hpp"
 #include "contact/wide.hpp"
 #include "parallel/workers.hpp"
 
@@ -359,9 +360,11 @@ void cache_manifold(Pair<N>& pair, const Body<N>& a, const Body<N>& b, const Mat
 // pairs.cpp
 template <int N>
 void add_body(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index);
+// (profile, if given, takes the broad phase's, the narrow phase's and the constraints' times.)
 template <int N>
 void find_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
-                   const std::vector<Material>& materials, const ContactSettings& settings, double h);
+                   const std::vector<Material>& materials, const ContactSettings& settings, double h,
+                   StepProfile* profile = nullptr);
 template <int N>
 void report_events(ContactState<N>& state);
 // solver.cpp

@@ -458,13 +458,22 @@ void add_body(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shap
 
 template <int N>
 void find_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
-                   const std::vector<Material>& materials, const ContactSettings& settings, double h) {
+                   const std::vector<Material>& materials, const ContactSettings& settings, double h,
+                   StepProfile* profile) {
+  StageClock clock;
   update_broad_phase(s, bodies, shapes, h);
   merge_pairs(s, bodies);
+  const double broad = clock.lap();
   narrow_phase(s, bodies, shapes, settings, h);
+  const double narrow = clock.lap();
   load_solver_bodies(s, bodies, settings.solver == ContactSolver::SoftStep);
   build_constraints(s, bodies, materials, settings);
   if (settings.solver == ContactSolver::Paper && settings.shock_iterations > 0) compute_levels(s, bodies);
+  if (profile) {
+    profile->broad_phase = broad;
+    profile->narrow_phase = narrow;
+    profile->constraints = clock.lap();
+  }
 }
 
 // A pair is touching when some point received a normal impulse or penetrates; pairs not collided in
@@ -509,7 +518,7 @@ void report_events(ContactState<N>& s) {
 #define WEDGE_INSTANTIATE(N)                                                                                  \
   template void add_body<N>(ContactState<N>&, const std::vector<Body<N>>&, const Shapes<N>&, int);           \
   template void find_contacts<N>(ContactState<N>&, std::vector<Body<N>>&, const Shapes<N>&,                   \
-                                 const std::vector<Material>&, const ContactSettings&, double);               \
+                                 const std::vector<Material>&, const ContactSettings&, double, StepProfile*); \
   template void report_events<N>(ContactState<N>&);
 WEDGE_INSTANTIATE(2)
 WEDGE_INSTANTIATE(3)
