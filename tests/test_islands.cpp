@@ -40,6 +40,28 @@ TEST_CASE("a resting stack falls asleep, then wakes as an island when a ball hit
   CHECK(w.is_awake(id));
 }
 
+TEST_CASE("sleeping off keeps every body awake, and once on, a resting stack sleeps time_to_sleep later",
+          "[contact][sleep]") {
+  World<3> w(with_gravity());
+  w.settings().contact.allow_sleep = false;
+  scenes::add_ground(w);
+  scenes::add_box_tower(w, 3);
+  const double h = 1.0 / 120.0;
+  for (int i = 0; i < 240; ++i) w.step(h);  // 2 s at rest, four times time_to_sleep
+  for (int i = 1; i <= 3; ++i) CHECK(w.is_awake(BodyId{std::uint32_t(i)}));
+  // The rest while sleeping was off does not count: the island sleeps once it has rested
+  // time_to_sleep (0.5 s, 60 steps) with sleeping on, not at the first step, and not much later.
+  w.settings().contact.allow_sleep = true;
+  int steps = 0;
+  while (w.is_awake(BodyId{3}) && steps < 240) {
+    w.step(h);
+    ++steps;
+  }
+  CHECK(steps >= 60);
+  CHECK(steps <= 61);
+  for (int i = 1; i <= 3; ++i) CHECK_FALSE(w.is_awake(BodyId{std::uint32_t(i)}));
+}
+
 TEST_CASE("input wakes a sleeping body and its island", "[contact][sleep]") {
   World<3> w(with_gravity());
   scenes::add_ground(w);

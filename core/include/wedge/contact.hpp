@@ -97,7 +97,8 @@ struct ContactSettings {
   double position_correction = 0.2;
   int position_iterations = 4;
   // Sleeping: an island whose bodies all move slower than these for time_to_sleep stops being simulated
-  // until something touches it or input is applied to one of its bodies.
+  // until something touches it or input is applied to one of its bodies. With allow_sleep off no island
+  // is formed and the rest timers stay at zero: turned on, a resting island sleeps time_to_sleep later.
   bool allow_sleep = true;
   double sleep_linear_speed = 0.02;   // m/s, of the centre and of the bounding-sphere rim (|w| r)
   double time_to_sleep = 0.5;         // s

@@ -99,6 +99,13 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
 // island whose bodies have all been still for time_to_sleep falls asleep, velocities set to zero.
 template <int N>
 void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
+  // Sleeping off: nothing would read the islands (Box2D v3 skips its island work likewise; here it was
+  // 2.5% of a 2D pyramid's step). The rest timers restart, so that turning sleep on does not put an
+  // island to sleep for the rest it had while sleeping was off.
+  if (!settings.allow_sleep) {
+    std::fill(s.sleep_time.begin(), s.sleep_time.end(), 0.0);
+    return;
+  }
   const int n = int(bodies.size());
   auto movable = [&](int i) { return moves(s, bodies, std::size_t(i)); };
   s.union_parent.resize(n);
@@ -131,7 +138,6 @@ void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const Cont
     s.island[i] = r;
     if (r != i) s.sleep_time[r] = std::min(s.sleep_time[r], s.sleep_time[i]);
   }
-  if (!settings.allow_sleep) return;
   for (int i = 0; i < n; ++i) {
     if (!movable(i) || s.sleep_time[s.island[i]] < settings.time_to_sleep) continue;
     s.awake[i] = 0;
