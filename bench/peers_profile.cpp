@@ -22,7 +22,7 @@ using namespace wedge::bench;
 constexpr int kStages = 9;
 constexpr const char* kNames[kStages] = {"broad phase",         "narrow phase", "constraints",
                                          "solve (+ warm start)", "integrate positions", "relax",
-                                         "finish (+ restitution)", "islands, sleep", "step"};
+                                         "finish (+ restitution)", "islands, events", "step"};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
                                      p.integratePositions,
                                      p.relaxImpulses,
                                      p.applyRestitution + p.storeImpulses + p.transforms,
-                                     p.splitIslands + p.sleepIslands,
+                                     p.splitIslands + p.sleepIslands + p.hitEvents,
                                      p.step};
         });
   };
