@@ -348,22 +348,22 @@ void World<N>::apply_angular_impulse(BodyId id, const Bivector<N>& j) {
 
 template <int N>
 void World<N>::step(double h) {
-  StageClock total, clock;
+  StageClock total;
   profile_ = StepProfile{};
   contact_->workers.resize(settings_.workers);
-  find_contacts(h);
-  clock.lap();
+  find_contacts(h);  // (find_contacts and soft_step time their own stages)
   if (settings_.contact.solver == ContactSolver::SoftStep) {
-    soft_step(h);  // (times its own stages)
+    soft_step(h);
   } else {
+    StageClock solver;
     process_collisions(h);
     integrate_velocities(h);
     process_contacts(h);
-    profile_.solve = clock.lap();
+    profile_.solve = solver.lap();
     integrate_positions(h, true, false);
-    profile_.integrate_positions = clock.lap();
+    profile_.integrate_positions = solver.lap();
   }
-  clock.lap();
+  StageClock clock;
   update_islands(h);
   profile_.islands = clock.lap();
   report_contact_events();
