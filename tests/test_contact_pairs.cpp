@@ -1,9 +1,11 @@
 // Contact pairs and events (core/src/contact/pairs.cpp): what a step reports after it (begin and end
 // events with impulse, point and approach speed, checked against the impulse-momentum balance), and
 // determinism of the whole contact pipeline (bit-identical states, also from a copied world); the
-// effective masses a recycled pair takes from the last step against those formed afresh.
+// effective masses a recycled pair takes from the last step against those formed afresh; the soft
+// step's lanes, built straight from the pairs, against those packed from points formed afresh.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 #include "contact_bodies.hpp"
@@ -177,7 +179,10 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
   // (not, from 3D on), nudged below the recycling limits between calls of find_contacts, so their
   // manifolds are recycled. Every point's effective masses and Jacobian rows, copied from the last step
   // or formed, must equal the bits build_constraint's formulas give from this step's bodies; once a
-  // cube's mass changes, and whenever the cuboid turns, that takes forming them again.
+  // cube's mass changes, and whenever the cuboid turns, that takes forming them again. (Recycling is
+  // the soft step's. It builds its points straight into the lanes, and keeps the masses in
+  // point_masses, the tangent mass in 2D along t alone; "the lanes are those packed from points" checks
+  // that the lanes take them.)
   ContactBodies<N> scene;
   std::vector<Body<N>>& bodies = scene.bodies;
   scene.add_ground();
@@ -194,6 +199,7 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
   contact::ContactState<N> s;
   for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, scene.shapes, i);
   const ContactSettings settings;
+  REQUIRE(settings.solver == ContactSolver::SoftStep);
   int eligible_count = 0;  // cube pairs whose masses may be copied (recycled, isotropic bodies)
   for (int round = 0; round < 12; ++round) {
     contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
@@ -210,7 +216,6 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
         ++eligible_count;
       }
       for (int k = 0; k < c.count; ++k) {
-        const contact::PointConstraint<N>& q = s.points[c.first + k];
         contact::PointConstraint<N> e;
         contact::set_effective_masses(e,
                                       Mat<N>((a.inv_mass + b.inv_mass) * Mat<N>::Identity() +
@@ -218,13 +223,16 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
                                              contact::angular_mass_term(b, p.arm_b[k])),
                                       c.normal);
         const auto jn_a = outer<N>(p.arm_a[k], c.normal).c, jn_b = outer<N>(p.arm_b[k], c.normal).c;
+        const contact::PointMasses<N>& q = s.point_masses[c.first + k];
         REQUIRE(q.normal_mass == e.normal_mass);
-        REQUIRE(q.tangent_mass == e.tangent_mass);
-        REQUIRE(q.kn == e.kn);
+        if constexpr (N == 2) {
+          const Vec<2> t(-c.normal[1], c.normal[0]);
+          REQUIRE(q.tangent_mass == t.dot(e.tangent_mass * t));
+        } else {
+          REQUIRE(q.tangent_mass == e.tangent_mass);
+        }
         REQUIRE(q.jn_a == jn_a);
         REQUIRE(q.jn_b == jn_b);
-        REQUIRE(q.dn_a == contact::inverse_inertia_times(a, jn_a));
-        REQUIRE(q.dn_b == contact::inverse_inertia_times(b, jn_b));
       }
       if (c.a == 0 && c.b == 1) {
         // The closed form at the cube's ground corners: the ground does not move, the cube's inverse
@@ -234,7 +242,7 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
         // change, this and the bit checks above would fail). Agreement to round-off.
         const double m = round <= 5 ? 1000.0 : 2000.0;  // kg: 1000 kg/m^N times the unit cube
         for (int k = 0; k < c.count; ++k)
-          CHECK(s.points[c.first + k].normal_mass == Approx(m / (1.0 + 1.5 * (N - 1))).epsilon(1e-12));
+          CHECK(s.point_masses[c.first + k].normal_mass == Approx(m / (1.0 + 1.5 * (N - 1))).epsilon(1e-12));
       }
     }
     // The nudges, each well below recycle_distance (5 cm) and recycle_angle (0.2 rad).
@@ -250,4 +258,110 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
   }
   // Both cube pairs (ground-cube, cube-cube) in rounds 1-11: the path under test ran.
   CHECK(eligible_count == 22);
+}
+
+// find_contacts builds the soft step's points straight into the lanes (pairs.cpp, build_wide), never as
+// PointConstraints. Here every point is formed again as a PointConstraint from its pair, bodies and
+// constraint by the formulas of paper section 6 (lever arms, K, jn = r ^ n, I^-1 jn, approach and slip
+// from the bodies' velocities), prepared (prepare_points) and packed by fill_wide, the reference
+// packing; the lanes must be those bytes exactly, header, slots, inertias and approach speeds. Three
+// rounds with nudges below the recycling limits, so the recycled pairs' copied masses are checked too.
+// The scene fills lanes unevenly: a row of cubes on the ground, a stack, a cuboid (not isotropic from
+// 3D on: wide inertias) and a cube on an edge (2^(N-2) points beside 2^(N-1)), all moving.
+// (Without warm start: the warm matching is the same code for both solvers.)
+TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points formed afresh, to the bit (2D-4D)",
+                       "[contact][lanes]", ((int N), N), 2, 3, 4) {
+  ContactBodies<N> scene;
+  std::vector<Body<N>>& bodies = scene.bodies;
+  scene.add_ground();
+  const auto cube = std::make_shared<const Shape<N>>(Shape<N>::box(Vec<N>::Constant(0.5)));
+  for (int i = 0; i < 4; ++i) scene.add(cube, BodyType::Dynamic, Vec<N>(1.5 * i * Vec<N>::Unit(0) + 0.499 * Vec<N>::Unit(1)));
+  scene.add(cube, BodyType::Dynamic, Vec<N>(0.2 * Vec<N>::Unit(0) + 1.497 * Vec<N>::Unit(1)));
+  Vec<N> half = Vec<N>::Constant(0.4);
+  half[0] = 0.7;
+  half[1] = 0.3;
+  scene.add(std::make_shared<const Shape<N>>(Shape<N>::box(half)), BodyType::Dynamic,
+            Vec<N>(-3.0 * Vec<N>::Unit(0) + 0.299 * Vec<N>::Unit(1)));
+  {  // a cube turned in the e01 plane, its lowest edge 1 mm into the ground
+    const int i = scene.add(cube, BodyType::Dynamic, Vec<N>(-6.0 * Vec<N>::Unit(0)));
+    Bivector<N> turn{};
+    turn.c[0] = 0.2;
+    bodies[i].rotor = wedge::exp(turn);
+    const Mat<N> r = to_matrix(bodies[i].rotor);
+    double lowest = 0.0;
+    for (int corner = 0; corner < (1 << N); ++corner) {
+      Vec<N> x;
+      for (int j = 0; j < N; ++j) x[j] = (corner >> j & 1) ? 0.5 : -0.5;
+      lowest = std::min(lowest, Vec<N>(r * x)[1]);
+    }
+    bodies[i].center[1] = -lowest - 1e-3;
+  }
+  for (std::size_t i = 1; i < bodies.size(); ++i) {
+    bodies[i].velocity = Vec<N>::Zero();
+    bodies[i].velocity[0] = 0.04 * double(i % 3) - 0.03;
+    bodies[i].velocity[1] = -0.05;
+    bodies[i].angular_velocity.c[0] = 0.03 - 0.02 * double(i % 4);
+  }
+  contact::ContactState<N> s;
+  for (int i = 0; i < int(bodies.size()); ++i) contact::add_body(s, bodies, scene.shapes, i);
+  ContactSettings settings;
+  settings.warm_start = false;
+  int recycled = 0, inertias = 0, padded = 0, sliding = 0;
+  for (int round = 0; round < 3; ++round) {
+    INFO("round " << round);
+    contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
+    REQUIRE(s.constraints.size() == 7);  // 6 on the ground, 1 in the stack
+    contact::ContactState<N> ref = s;
+    ref.points.clear();
+    for (const contact::Constraint<N>& c : ref.constraints) {
+      const contact::Pair<N>& p = ref.pairs[c.pair];
+      recycled += p.recycled;
+      const contact::SolverBody<N>& a = ref.solver_bodies[c.a];
+      const contact::SolverBody<N>& b = ref.solver_bodies[c.b];
+      REQUIRE(c.first == int(ref.points.size()));
+      for (int k = 0; k < c.count; ++k) {
+        contact::PointConstraint<N> q;
+        q.ra = p.arm_a[k];
+        q.rb = p.arm_b[k];
+        contact::set_effective_masses(q,
+                                      Mat<N>((a.inv_mass + b.inv_mass) * Mat<N>::Identity() +
+                                             contact::angular_mass_term(a, q.ra) + contact::angular_mass_term(b, q.rb)),
+                                      c.normal);
+        q.jn_a = outer<N>(q.ra, c.normal).c;
+        q.jn_b = outer<N>(q.rb, c.normal).c;
+        q.dn_a = contact::inverse_inertia_times(a, q.jn_a);
+        q.dn_b = contact::inverse_inertia_times(b, q.jn_b);
+        q.gap = -p.manifold.points[k].depth;
+        const Vec<N> u = b.v + dot<N>(q.rb, b.w) - a.v - dot<N>(q.ra, a.w);
+        q.approach = c.normal.dot(u);
+        const Vec<N> slip = u - q.approach * c.normal;
+        q.sliding = slip.norm() > settings.static_slip_speed;
+        if (q.sliding) q.slip_direction = slip / slip.norm();
+        sliding += q.sliding;
+        q.friction = q.sliding ? c.kinetic_friction : c.friction;
+        ref.points.push_back(q);
+      }
+      contact::prepare_points(ref, c, false);
+    }
+    for (contact::WideConstraint<N>& w : ref.wide) {
+      contact::fill_wide(ref, w);
+      inertias += w.inertia >= 0;
+      for (int l = 0; l < contact::kLanes<N>; ++l)
+        padded += w.constraint[l] >= 0 && ref.constraints[w.constraint[l]].count < w.count;
+    }
+    const auto same = [](const auto& x, const auto& y) {
+      return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+    };
+    REQUIRE(same(s.wide, ref.wide));
+    CHECK(same(s.wide_points, ref.wide_points));
+    CHECK(same(s.wide_cold, ref.wide_cold));
+    CHECK(same(s.wide_approach, ref.wide_approach));
+    CHECK(same(s.wide_inertia, ref.wide_inertia));
+    // The nudges, well below recycle_distance (5 cm) and recycle_angle (0.2 rad).
+    for (std::size_t i = 1; i < bodies.size(); ++i) bodies[i].center[0] += 1e-4;
+  }
+  CHECK(recycled > 0);
+  CHECK(padded > 0);
+  CHECK(sliding > 0);
+  CHECK((inertias > 0) == (N > 2));
 }

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/LU>  // set_effective_masses: inverse()
@@ -41,11 +42,11 @@ struct Pair {
   bool touching = false;   // received a normal impulse or penetrated in the last step
   bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
   int constraint = -1;     // index of its constraint in this step, or -1
-  // Where its points are in ContactState::points (this step) and previous_points (the last step), or
-  // -1; recycled: this step's manifold is the last step's carried along (recycling.cpp), so a point's
-  // normal, lever arms and, for bodies whose inertia is isotropic, effective masses are the same, and
-  // build_constraint takes them from the last step's point. mass_key: the bodies' 1/m and isotropic
-  // 1/I those masses were formed with.
+  // Where its points are in ContactState::points or point_masses (this step) and previous_masses (the
+  // last step), or -1; recycled (soft step): this step's manifold is the last step's carried along
+  // (recycling.cpp), so a point's normal, lever arms and, for bodies whose inertia is isotropic,
+  // effective masses are the same, and the build takes them from the last step's. mass_key: the
+  // bodies' 1/m and isotropic 1/I those masses were formed with.
   int points_first = -1, previous_first = -1;
   bool recycled = false;
   std::array<double, 4> mass_key{};
@@ -156,6 +157,27 @@ struct PointConstraint {
   double pseudo_mass = 0.0;                         // 1 / (n^T K n) of the pair (kept through shock propagation)
 };
 
+// What the soft step's lanes take of a point's effective masses and Jacobian (the rest of its lanes come
+// from its PointConstraint): formed from K, or, for a recycled pair of isotropic bodies, the last step's
+// (ContactState::point_masses, Pair::previous_first). 2D keeps the tangent mass along t alone (wide.hpp).
+template <int N>
+struct PointMasses {
+  using Biv = Eigen::Matrix<double, kBiv<N>, 1>;
+  using Tangent = std::conditional_t<N == 2, double, Mat<N>>;
+  double normal_mass = 0.0;
+  Biv jn_a = Biv::Zero(), jn_b = Biv::Zero();
+  Tangent tangent_mass = zero_tangent();
+
+ private:
+  static Tangent zero_tangent() {
+    if constexpr (N == 2) {
+      return 0.0;
+    } else {
+      return Mat<N>::Zero();
+    }
+  }
+};
+
 // The effective masses of K for a contact with normal n.
 // A point whose K is not finite and positive (a lever arm from a broken manifold point) gets zero
 // effective masses, so it never receives an impulse instead of turning the bodies' velocities to NaN.
@@ -233,11 +255,15 @@ struct ContactState {
   // for the paper's solver, whose constraints are in pair order).
   std::vector<int> colour_start;
   std::vector<PointConstraint<N>> points;
-  std::vector<PointConstraint<N>> previous_points;  // the last step's points (Pair::previous_first)
+  // The soft step builds no PointConstraints: its points go straight into the lanes, and what a recycled
+  // pair's points keep is here, this step's and the last (Pair::points_first, previous_first).
+  std::vector<PointMasses<N>> point_masses, previous_masses;
+  bool built_soft = false;  // the last step's constraints were the soft step's (previous_masses is theirs)
   // Soft step: the constraints in lanes (wide.hpp), colour by colour; wide_start as colour_start.
   std::vector<WideConstraint<N>> wide;
   std::vector<WidePoint<N>> wide_points;
   std::vector<WidePointCold<N>> wide_cold;  // beside wide_points
+  std::vector<Wide<N>> wide_approach;       // beside wide_points: m/s, the normal velocity at the start (restitution)
   std::vector<WideInertia<N>> wide_inertia;
   std::vector<int> wide_start, wide_scratch;
   Lanes lanes = default_lanes();  // the lane kernels' instruction set (the same bits either way)

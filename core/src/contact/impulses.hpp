@@ -21,17 +21,17 @@ void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>&
   }
 }
 
-// An impulse of `change` along the normal at the point (apply_impulse through the normal's rows).
-template <int N>
-inline void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p,
-                                 const Vec<N>& n, double change) {
+// An impulse of `change` along the normal n at a point whose I^-1 jn are dn_a and dn_b.
+template <int N, class Biv>
+inline void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const Vec<N>& n, double change, const Biv& dn_a,
+                                 const Biv& dn_b) {
   if (!a.frozen) {
     a.v -= (a.inv_mass * change) * n;
-    a.w.c -= change * p.dn_a;
+    a.w.c -= change * dn_a;
   }
   if (!b.frozen) {
     b.v += (b.inv_mass * change) * n;
-    b.w.c += change * p.dn_b;
+    b.w.c += change * dn_b;
   }
 }
 

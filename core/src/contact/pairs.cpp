@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "contact/contact_system.hpp"
+#include "contact/lane_fill.hpp"
 #include "linalg/isotropic.hpp"
 #include "wedge/collision/narrow_phase.hpp"
 
@@ -285,17 +286,13 @@ void colour_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies) 
   s.constraint_pairs.swap(s.colour_order);
 }
 
-// The constraint of pair pi, as constraints[index], its points from points[first] on.
-// Each point keeps its lever arms and the two bodies' parts of K = delta/m + [r]_*^T I^-1 [r]_* (paper
-// section 6), and takes the static friction coefficient if it was not slipping at the start of the
-// step, else the kinetic one.
+// The constraint of pair pi, its points from `first` on: its bodies, normal and materials.
 template <int N>
-void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
-                      double slip_speed, double match_distance, int pi, int index, int first) {
-  Pair<N>& p = s.pairs[pi];
+Constraint<N> make_constraint(const ContactState<N>& s, const std::vector<Material>& materials, int pi, int first) {
+  const Pair<N>& p = s.pairs[pi];
   Constraint<N> c;
   c.first = first;
-  c.pair = int(pi);
+  c.pair = pi;
   c.a = int(p.a);
   c.b = int(p.b);
   c.normal = p.manifold.normal;
@@ -305,81 +302,157 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
   c.kinetic_friction = std::min(mix_friction(ma.kinetic_friction, mb.kinetic_friction), c.friction);
   c.restitution = mix_restitution(ma.restitution, mb.restitution);
   c.count = p.manifold.count;
+  return c;
+}
+
+// The bodies' 1/m and isotropic 1/I, which a recycled pair's masses were formed with (Pair::mass_key).
+template <int N>
+std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
+  return {a.inv_mass, a.iso_inv_inertia, b.inv_mass, b.iso_inv_inertia};
+}
+// Whether pair p's points may take their masses from the last step's: a recycled manifold keeps its
+// normal and lever arms, and with isotropic bodies of the same masses the effective masses and
+// Jacobian rows are then those of the last step, to the bit (the same function of the same numbers):
+// copied rather than formed again (an eighth of the instructions of a resting pyramid of cubes).
+template <int N>
+bool masses_recycled(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
+  return s.built_soft && p.recycled && p.previous_first >= 0 && a.isotropic && b.isotropic &&
+         mass_key(a, b) == p.mass_key;
+}
+
+// Point k of constraint c, all but its masses: lever arms, gap, approach speed, friction (static if the
+// point was not slipping at the start of the step, else kinetic, against the slip) and the warm start
+// from the last step's point w (-1: none).
+template <int N>
+void make_point(const ContactState<N>& s, const Pair<N>& p, const Constraint<N>& c, int k, int w, double slip_speed,
+                PointConstraint<N>& q) {
+  q = PointConstraint<N>{};
+  q.ra = p.arm_a[k];
+  q.rb = p.arm_b[k];
+  q.gap = -p.manifold.points[k].depth;
+  const Vec<N> u = relative_velocity(s.solver_bodies[c.a], s.solver_bodies[c.b], q);
+  q.approach = c.normal.dot(u);
+  const Vec<N> slip = u - q.approach * c.normal;
+  const double slip_norm = slip.norm();
+  q.sliding = slip_norm > slip_speed;
+  if (q.sliding) q.slip_direction = slip / slip_norm;
+  q.friction = q.sliding ? c.kinetic_friction : c.friction;
+  if (w >= 0) {
+    q.warm_normal = p.warm_normal[w];
+    q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
+  }
+}
+
+// K = delta/m + [r]_*^T I^-1 [r]_* of the point's two bodies (paper section 6): its effective masses and
+// the normal's Jacobian rows.
+template <int N>
+void form_masses(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& normal, PointConstraint<N>& q) {
+  set_effective_masses(q,
+                       Mat<N>((a.inv_mass + b.inv_mass) * Mat<N>::Identity() + angular_mass_term(a, q.ra) +
+                              angular_mass_term(b, q.rb)),
+                       normal);
+  q.jn_a = outer<N>(q.ra, normal).c;
+  q.jn_b = outer<N>(q.rb, normal).c;
+}
+
+// What the constraint of pair p leaves in it: where its points are, how fast they approached (events),
+// and the masses' key.
+template <int N>
+void note_constraint(Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b, int index, int first,
+                     double approach_speed) {
+  p.constraint = index;
+  p.approach_speed = approach_speed;
+  p.points_first = first;
+  p.mass_key = mass_key(a, b);
+}
+
+// The paper's solver: the constraint of pair pi, as constraints[index], its points as points[first] on.
+// (Its manifolds are never recycled, collide_pair, so its masses are always formed.)
+template <int N>
+void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
+                      double slip_speed, double match_distance, int pi, int index, int first) {
+  Pair<N>& p = s.pairs[pi];
+  const Constraint<N> c = make_constraint(s, materials, pi, first);
   const SolverBody<N>& sa = s.solver_bodies[c.a];
   const SolverBody<N>& sb = s.solver_bodies[c.b];
   std::array<int, kMaxManifoldPoints<N>> match;
   warm_matches(p, bodies[c.a].center, match_distance, match);
   double approach_speed = 0.0;
-  // A recycled manifold keeps its normal and lever arms; with isotropic bodies of the same masses the
-  // effective masses and Jacobian rows are then those of the last step, to the bit (the same function
-  // of the same numbers), and are copied rather than formed again (an eighth of the instructions of a
-  // resting pyramid of cubes).
-  const std::array<double, 4> key{sa.inv_mass, sa.iso_inv_inertia, sb.inv_mass, sb.iso_inv_inertia};
-  const PointConstraint<N>* last = p.recycled && p.previous_first >= 0 && sa.isotropic && sb.isotropic &&
-                                           key == p.mass_key
-                                       ? &s.previous_points[p.previous_first]
-                                       : nullptr;
   for (int k = 0; k < c.count; ++k) {
-    const ContactPoint<N>& cp = p.manifold.points[k];
     // (The array is not cleared and value-initialised each step: that was one more sweep over it.)
     PointConstraint<N>& q = s.points[c.first + k];
-    q = PointConstraint<N>{};
-    q.ra = p.arm_a[k];
-    q.rb = p.arm_b[k];
-    if (last) {
-      const PointConstraint<N>& o = last[k];
-      q.normal_mass = o.normal_mass;
-      q.tangent_mass = o.tangent_mass;
-      q.kn = o.kn;
-      q.jn_a = o.jn_a;
-      q.jn_b = o.jn_b;
-      q.dn_a = o.dn_a;
-      q.dn_b = o.dn_b;
-    } else {
-      set_effective_masses(q,
-                           Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + angular_mass_term(sa, q.ra) +
-                                  angular_mass_term(sb, q.rb)),
-                           c.normal);
-      q.jn_a = outer<N>(q.ra, c.normal).c;
-      q.jn_b = outer<N>(q.rb, c.normal).c;
-      q.dn_a = inverse_inertia_times(sa, q.jn_a);
-      q.dn_b = inverse_inertia_times(sb, q.jn_b);
-    }
-    q.pseudo_mass = q.normal_mass;
-    q.gap = -cp.depth;
-    const Vec<N> u = relative_velocity(sa, sb, q);
-    q.approach = c.normal.dot(u);
+    make_point(s, p, c, k, match[k], slip_speed, q);
     approach_speed = std::max(approach_speed, -q.approach);
-    const Vec<N> slip = u - q.approach * c.normal;
-    const double slip_norm = slip.norm();
-    q.sliding = slip_norm > slip_speed;
-    if (q.sliding) q.slip_direction = slip / slip_norm;
-    q.friction = q.sliding ? c.kinetic_friction : c.friction;
-    const int w = match[k];
-    if (w >= 0) {
-      q.warm_normal = p.warm_normal[w];
-      q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
-    }
+    form_masses(sa, sb, c.normal, q);
+    q.dn_a = inverse_inertia_times(sa, q.jn_a);
+    q.dn_b = inverse_inertia_times(sb, q.jn_b);
+    q.pseudo_mass = q.normal_mass;
   }
-  p.constraint = index;
-  p.approach_speed = approach_speed;
-  p.points_first = first;
-  p.mass_key = key;
+  note_constraint(p, sa, sb, index, first, approach_speed);
   s.constraints[index] = c;
 }
 
+// The soft step: the constraints of wide constraint w, each point built, prepared and written straight
+// into its lane (no PointConstraint is kept: writing 272 bytes a 2D point and reading them back to pack
+// the lanes, and reading the last step's for the recycled masses, was most of the build). A recycled
+// pair's masses come from the last step's point_masses, and this step's are kept there.
+template <int N>
+void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
+                const ContactSettings& settings, WideConstraint<N>& w) {
+  using Biv = typename PointMasses<N>::Biv;
+  for (int l = 0; l < kLanes<N>; ++l) {
+    const int index = w.constraint[l];
+    if (index >= 0)
+      s.constraints[index] = make_constraint(s, materials, s.constraint_pairs[index], s.constraints[index].first);
+  }
+  clear_slots(s, w);
+  fill_wide_header(s, w);
+  const bool inertia = w.inertia >= 0;
+  for (int l = 0; l < kLanes<N>; ++l) {
+    if (w.constraint[l] < 0) continue;
+    const Constraint<N>& c = s.constraints[w.constraint[l]];
+    Pair<N>& p = s.pairs[c.pair];
+    const SolverBody<N>& sa = s.solver_bodies[c.a];
+    const SolverBody<N>& sb = s.solver_bodies[c.b];
+    std::array<int, kMaxManifoldPoints<N>> match;
+    warm_matches(p, bodies[c.a].center, settings.contact_margin, match);
+    const PointMasses<N>* last =
+        masses_recycled(s, p, sa, sb) ? &s.previous_masses[p.previous_first] : nullptr;
+    double approach_speed = 0.0;
+    PointConstraint<N> q;
+    for (int k = 0; k < w.count; ++k) {
+      if (k >= c.count) {  // (a zero point, as fill_wide's)
+        q = PointConstraint<N>{};
+        put_lane_point(s, w, k, l, c.normal, q, masses_of(q, c.normal), q.dn_a, q.dn_b);
+        continue;
+      }
+      make_point(s, p, c, k, match[k], settings.static_slip_speed, q);
+      approach_speed = std::max(approach_speed, -q.approach);
+      PointMasses<N>& m = s.point_masses[c.first + k];
+      if (last) {
+        m = last[k];
+      } else {
+        form_masses(sa, sb, c.normal, q);
+        m = masses_of(q, c.normal);
+      }
+      prepare_point(q, c.normal, settings.warm_start);
+      const Biv dn_a = inertia ? Biv(inverse_inertia_times(sa, m.jn_a)) : Biv::Zero();
+      const Biv dn_b = inertia ? Biv(inverse_inertia_times(sb, m.jn_b)) : Biv::Zero();
+      put_lane_point(s, w, k, l, c.normal, q, m, dn_a, dn_b);
+    }
+    note_constraint(p, sa, sb, w.constraint[l], c.first, approach_speed);
+  }
+}
+
 // One constraint per pair with contact points and an awake dynamic body. For the soft step, in colour
-// order and built wide constraint by wide constraint: each one's constraints, their points prepared for
-// the sub-steps, then the lanes filled from them while they are in the cache (a resting pyramid's points
-// do not fit it, and building, preparing and packing them in three sweeps took a quarter to a third of
-// its step in a profile).
+// order and built wide constraint by wide constraint, straight into the lanes (build_wide).
 template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                        const ContactSettings& settings) {
   const bool soft = settings.solver == ContactSolver::SoftStep;
-  const double slip_speed = settings.static_slip_speed, match_distance = settings.contact_margin;
   s.constraints.clear();
-  s.points.swap(s.previous_points);  // (kept for the recycled pairs' masses; build_constraint resets each point)
+  // (The last step's masses are kept for the recycled pairs; the build writes every one it uses.)
+  if (soft) s.point_masses.swap(s.previous_masses);
   s.constraint_pairs.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
@@ -409,29 +482,21 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     c.b = int(p.b);
     total += c.count;
   }
-  s.points.resize(total);
-  const auto build = [&](int k) {
-    build_constraint(s, bodies, materials, slip_speed, match_distance, s.constraint_pairs[k], k,
-                     s.constraints[k].first);
-  };
-  if (!soft) {
-    s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int begin, int end) {
-      for (int k = begin; k < end; ++k) build(k);
+  if (soft) {
+    s.point_masses.resize(total);
+    assign_lanes(s);
+    s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) build_wide(s, bodies, materials, settings, s.wide[i]);
     });
-    return;
+  } else {
+    s.points.resize(total);
+    s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int k0, int k1) {
+      for (int k = k0; k < k1; ++k)
+        build_constraint(s, bodies, materials, settings.static_slip_speed, settings.contact_margin,
+                         s.constraint_pairs[k], k, s.constraints[k].first);
+    });
   }
-  assign_lanes(s);
-  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      WideConstraint<N>& w = s.wide[i];
-      for (int l = 0; l < kLanes<N>; ++l) {
-        if (w.constraint[l] < 0) continue;
-        build(w.constraint[l]);
-        prepare_points(s, s.constraints[w.constraint[l]], settings.warm_start);
-      }
-      fill_wide(s, w);
-    }
-  });
+  s.built_soft = soft;
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include <utility>
 
 #include "contact/impulses.hpp"
+#include "contact/lane_fill.hpp"
 #include "contact/lanes.hpp"
 #include "instantiate.hpp"
 
@@ -125,26 +126,40 @@ void warm_start_substep(ContactState<N>& s) {
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
 // step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule). The accumulated
 // impulses are the pair's (unpack_wide): warm_normal the last sub-step's, normal_impulse the step's.
+// The points are read from the lanes, wide constraint by wide constraint: within a colour no two share
+// a moving body, so this is the colour order's answer.
 template <int N>
 void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
-  for_each_constraint_by_colour(s, [&](const Constraint<N>& c) {
-    if (c.restitution <= 0.0) return;
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    Pair<N>& pair = s.pairs[c.pair];
-    for (int k = 0; k < c.count; ++k) {
-      const PointConstraint<N>& p = s.points[c.first + k];
-      double& impulse = pair.warm_normal[k];
-      double& total = pair.normal_impulse[k];
-      if (p.approach > -settings.restitution_threshold || total <= 0.0) continue;
-      const double un = c.normal.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
-      const double next = std::max(impulse - p.normal_mass * (un + c.restitution * p.approach), 0.0);
-      const double change = next - impulse;
-      impulse = next;
-      total += change;
-      apply_normal_impulse(a, b, p, c.normal, change);
+  using Biv = typename PointMasses<N>::Biv;
+  for (const WideConstraint<N>& w : s.wide) {
+    for (int l = 0; l < kLanes<N>; ++l) {
+      if (w.constraint[l] < 0) continue;
+      const Constraint<N>& c = s.constraints[w.constraint[l]];
+      if (c.restitution <= 0.0) continue;
+      SolverBody<N>& a = s.solver_bodies[c.a];
+      SolverBody<N>& b = s.solver_bodies[c.b];
+      Pair<N>& pair = s.pairs[c.pair];
+      for (int k = 0; k < c.count; ++k) {
+        const WidePoint<N>& q = s.wide_points[w.first + k];
+        const double approach = s.wide_approach[w.first + k][l];
+        double& impulse = pair.warm_normal[k];
+        double& total = pair.normal_impulse[k];
+        if (approach > -settings.restitution_threshold || total <= 0.0) continue;
+        Biv jn_a, jn_b;
+        for (int i = 0; i < kBiv<N>; ++i) {
+          jn_a[i] = q.jn_a[i][l];
+          jn_b[i] = q.jn_b[i][l];
+        }
+        const double un = c.normal.dot(b.v - a.v) + jn_b.dot(b.w.c) - jn_a.dot(a.w.c);
+        const double next = std::max(impulse - q.normal_mass[l] * (un + c.restitution * approach), 0.0);
+        const double change = next - impulse;
+        impulse = next;
+        total += change;
+        apply_normal_impulse(a, b, c.normal, change, Biv(inverse_inertia_times(a, jn_a)),
+                             Biv(inverse_inertia_times(b, jn_b)));
+      }
     }
-  });
+  }
 }
 
 }  // namespace
@@ -160,75 +175,18 @@ void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double 
   for_each_wide(s, pass);
 }
 
-// The lanes' data of one wide constraint: its lanes' normals, bodies and points (zero in empty lanes).
+// The lanes of one wide constraint from its constraints' points, built and prepared (prepare_points).
 template <int N>
 void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
-  constexpr int K = kBiv<N>;
-  const Constraint<N>* c[kLanes<N>];
-  const SolverBody<N>* a[kLanes<N>];
-  const SolverBody<N>* b[kLanes<N>];
-  for (int l = 0; l < kLanes<N>; ++l) {
-    c[l] = w.constraint[l] >= 0 ? &s.constraints[w.constraint[l]] : nullptr;
-    a[l] = c[l] && (w.move_a >> l & 1u) ? &s.solver_bodies[w.a[l]] : nullptr;
-    b[l] = c[l] && (w.move_b >> l & 1u) ? &s.solver_bodies[w.b[l]] : nullptr;
-  }
-  for (int i = 0; i < N; ++i) w.normal[i] = make_wide<Wide<N>>([&](int l) { return c[l] ? c[l]->normal[i] : 0.0; });
-  w.inv_mass_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_mass : 0.0; });
-  w.inv_mass_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_mass : 0.0; });
-  w.iso_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->iso_inv_inertia : 0.0; });
-  w.iso_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->iso_inv_inertia : 0.0; });
-  if (w.inertia >= 0) {
-    WideInertia<N>& m = s.wide_inertia[w.inertia];
-    for (int i = 0; i < K * K; ++i) {
-      m.a[i] = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_inertia.data()[i] : 0.0; });
-      m.b[i] = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_inertia.data()[i] : 0.0; });
-    }
-  }
-  // A lane without a point reads one whose every field is zero (no test per field and lane).
+  clear_slots(s, w);
+  fill_wide_header(s, w);
   static const PointConstraint<N> none{};
-  for (int k = 0; k < w.count; ++k) {
-    const PointConstraint<N>* p[kLanes<N>];
-    for (int l = 0; l < kLanes<N>; ++l) p[l] = c[l] && k < c[l]->count ? &s.points[c[l]->first + k] : &none;
-    const auto lanes = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return field(*p[l]); }); };
-    if (w.inertia >= 0) {
-      WideInertia<N>& m = s.wide_inertia[w.inertia];
-      for (int i = 0; i < K; ++i) {
-        m.dn_a[k][i] = lanes([i](const PointConstraint<N>& x) { return x.dn_a[i]; });
-        m.dn_b[k][i] = lanes([i](const PointConstraint<N>& x) { return x.dn_b[i]; });
-      }
-    }
-    WidePoint<N>& q = s.wide_points[w.first + k];
-    WidePointCold<N>& cold = s.wide_cold[w.first + k];
-    q.separation = lanes([](const PointConstraint<N>& x) { return x.separation; });
-    cold.base_separation = lanes([](const PointConstraint<N>& x) { return x.base_separation; });
-    q.normal_mass = lanes([](const PointConstraint<N>& x) { return x.normal_mass; });
-    q.normal_impulse = lanes([](const PointConstraint<N>& x) { return x.normal_impulse; });
-    q.normal_total = lanes([](const PointConstraint<N>& x) { return x.normal_total; });
-    q.friction = lanes([](const PointConstraint<N>& x) { return x.friction; });
-    cold.sliding = lanes([](const PointConstraint<N>& x) { return x.sliding ? 1.0 : 0.0; });
-    for (int i = 0; i < K; ++i) {
-      q.jn_a[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_a[i]; });
-      q.jn_b[i] = lanes([i](const PointConstraint<N>& x) { return x.jn_b[i]; });
-    }
-    for (int i = 0; i < N; ++i)
-      cold.slip_direction[i] = lanes([i](const PointConstraint<N>& x) { return x.slip_direction[i]; });
-    if constexpr (N == 2) {  // friction along t alone (wide.hpp)
-      Vec<2> t[kLanes<2>];
-      for (int l = 0; l < kLanes<2>; ++l) t[l] = c[l] ? tangent_2d(c[l]->normal) : Vec<2>::Zero();
-      const auto along = [&](auto field) { return make_wide<Wide<N>>([&](int l) { return field(*p[l], t[l], l); }); };
-      using P = PointConstraint<N>;
-      q.tangent_impulse = along([](const P& x, const Vec<2>& tl, int) { return x.tangent_impulse.dot(tl); });
-      q.tangent_mass = along([](const P& x, const Vec<2>& tl, int) { return tl.dot(x.tangent_mass * tl); });
-      q.jt_a = along([&](const P& x, const Vec<2>&, int l) { return c[l] ? c[l]->normal.dot(x.ra) : 0.0; });
-      q.jt_b = along([&](const P& x, const Vec<2>&, int l) { return c[l] ? c[l]->normal.dot(x.rb) : 0.0; });
-    } else {
-      for (int i = 0; i < N; ++i) {
-        q.tangent_impulse[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_impulse[i]; });
-        q.ra[i] = lanes([i](const PointConstraint<N>& x) { return x.ra[i]; });
-        q.rb[i] = lanes([i](const PointConstraint<N>& x) { return x.rb[i]; });
-      }
-      for (int i = 0; i < N * N; ++i)
-        q.tangent_mass[i] = lanes([i](const PointConstraint<N>& x) { return x.tangent_mass.data()[i]; });
+  for (int l = 0; l < kLanes<N>; ++l) {
+    if (w.constraint[l] < 0) continue;
+    const Constraint<N>& c = s.constraints[w.constraint[l]];
+    for (int k = 0; k < w.count; ++k) {
+      const PointConstraint<N>& x = k < c.count ? s.points[c.first + k] : none;
+      put_lane_point(s, w, k, l, c.normal, x, masses_of(x, c.normal), x.dn_a, x.dn_b);
     }
   }
 }
@@ -316,6 +274,7 @@ void assign_lanes(ContactState<N>& s) {
   s.wide_start.push_back(int(s.wide.size()));
   s.wide_points.resize(slots);
   s.wide_cold.resize(slots);
+  s.wide_approach.resize(slots);
 }
 
 template <int N>
@@ -345,18 +304,10 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   s.substep = 0;
 }
 
-// A constraint's points at the start of the soft step: the separation to follow through the sub-steps,
-// and the warm-start impulses.
+// A constraint's points at the start of the soft step (prepare_point).
 template <int N>
 void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start) {
-  for (int k = c.first; k < c.first + c.count; ++k) {
-    PointConstraint<N>& p = s.points[k];
-    p.base_separation = p.gap - c.normal.dot(p.rb - p.ra);
-    p.separation = p.gap;
-    p.normal_impulse = warm_start ? p.warm_normal : 0.0;
-    p.tangent_impulse = warm_start ? p.warm_tangent : Vec<N>::Zero();
-    p.normal_total = 0.0;
-  }
+  for (int k = c.first; k < c.first + c.count; ++k) prepare_point(s.points[k], c.normal, warm_start);
 }
 
 // After a pass, in one sweep over the solver bodies: what it changed goes to the warm start

@@ -1,0 +1,128 @@
+// Writing the soft step's lanes (wide.hpp) one lane at a time (internal): a wide constraint's header
+// from its constraints and bodies, and lane l of a slot from one point. find_contacts builds each point
+// straight into its lane (pairs.cpp, build_wide); fill_wide packs points already built as
+// PointConstraints (soft_step.cpp; the tests' reference). Both write through these, so the two give
+// the same lanes to the bit.
+#pragma once
+
+#include "contact/contact_system.hpp"
+
+namespace wedge::contact {
+
+// What the lanes take of a point's masses, from the point (2D: along t = tangent_2d(n)).
+template <int N>
+PointMasses<N> masses_of(const PointConstraint<N>& x, const Vec<N>& normal) {
+  PointMasses<N> m;
+  m.normal_mass = x.normal_mass;
+  m.jn_a = x.jn_a;
+  m.jn_b = x.jn_b;
+  if constexpr (N == 2) {
+    const Vec<2> t = tangent_2d(normal);
+    m.tangent_mass = t.dot(x.tangent_mass * t);
+  } else {
+    m.tangent_mass = x.tangent_mass;
+  }
+  return m;
+}
+
+// Zeroes the slots of a wide constraint: a lane without a constraint, or past its constraint's points,
+// keeps zero in every field (it has no mass and takes no impulse).
+template <int N>
+void clear_slots(ContactState<N>& s, const WideConstraint<N>& w) {
+  for (int k = w.first; k < w.first + w.count; ++k) {
+    s.wide_points[k] = WidePoint<N>{};
+    s.wide_cold[k] = WidePointCold<N>{};
+    s.wide_approach[k] = Wide<N>{};
+  }
+  if (w.inertia < 0) return;
+  WideInertia<N>& m = s.wide_inertia[w.inertia];
+  for (int k = 0; k < w.count; ++k)
+    for (int i = 0; i < kBiv<N>; ++i) m.dn_a[k][i] = m.dn_b[k][i] = Wide<N>{};
+}
+
+// The header's lanes: each lane's normal, and its bodies' inverse masses and inertias (0 for a body that
+// does not move), from its Constraint and the solver bodies.
+template <int N>
+void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
+  constexpr int K = kBiv<N>;
+  const Constraint<N>* c[kLanes<N>];
+  const SolverBody<N>* a[kLanes<N>];
+  const SolverBody<N>* b[kLanes<N>];
+  for (int l = 0; l < kLanes<N>; ++l) {
+    c[l] = w.constraint[l] >= 0 ? &s.constraints[w.constraint[l]] : nullptr;
+    a[l] = c[l] && (w.move_a >> l & 1u) ? &s.solver_bodies[w.a[l]] : nullptr;
+    b[l] = c[l] && (w.move_b >> l & 1u) ? &s.solver_bodies[w.b[l]] : nullptr;
+  }
+  for (int i = 0; i < N; ++i) w.normal[i] = make_wide<Wide<N>>([&](int l) { return c[l] ? c[l]->normal[i] : 0.0; });
+  w.inv_mass_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_mass : 0.0; });
+  w.inv_mass_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_mass : 0.0; });
+  w.iso_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->iso_inv_inertia : 0.0; });
+  w.iso_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->iso_inv_inertia : 0.0; });
+  if (w.inertia < 0) return;
+  WideInertia<N>& m = s.wide_inertia[w.inertia];
+  for (int i = 0; i < K * K; ++i) {
+    m.a[i] = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_inertia.data()[i] : 0.0; });
+    m.b[i] = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_inertia.data()[i] : 0.0; });
+  }
+}
+
+// Lane l of slot k (0-based within w) from a point of the lane's constraint, with normal `normal`: x for
+// all but the masses, m for those; dn_a and dn_b (I^-1 jn) only where the wide constraint keeps them
+// (w.inertia >= 0). A constraint with fewer points than the slots puts a zero point (PointConstraint{})
+// in the slots past its last: in 2D its friction fields are then t . 0, as the point's own would be.
+template <int N>
+[[gnu::always_inline]] inline void put_lane_point(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
+                                                  const Vec<N>& normal, const PointConstraint<N>& x,
+                                                  const PointMasses<N>& m, const typename PointMasses<N>::Biv& dn_a,
+                                                  const typename PointMasses<N>::Biv& dn_b) {
+  constexpr int K = kBiv<N>;
+  WidePoint<N>& q = s.wide_points[w.first + k];
+  WidePointCold<N>& cold = s.wide_cold[w.first + k];
+  s.wide_approach[w.first + k].set(l, x.approach);
+  q.separation.set(l, x.separation);
+  cold.base_separation.set(l, x.base_separation);
+  q.normal_mass.set(l, m.normal_mass);
+  q.normal_impulse.set(l, x.normal_impulse);
+  q.normal_total.set(l, x.normal_total);
+  q.friction.set(l, x.friction);
+  cold.sliding.set(l, x.sliding ? 1.0 : 0.0);
+  for (int i = 0; i < K; ++i) {
+    q.jn_a[i].set(l, m.jn_a[i]);
+    q.jn_b[i].set(l, m.jn_b[i]);
+  }
+  for (int i = 0; i < N; ++i) cold.slip_direction[i].set(l, x.slip_direction[i]);
+  if (w.inertia >= 0) {
+    WideInertia<N>& in = s.wide_inertia[w.inertia];
+    for (int i = 0; i < K; ++i) {
+      in.dn_a[k][i].set(l, dn_a[i]);
+      in.dn_b[k][i].set(l, dn_b[i]);
+    }
+  }
+  if constexpr (N == 2) {  // friction along t alone (wide.hpp)
+    const Vec<2> t = tangent_2d(normal);
+    q.tangent_impulse.set(l, x.tangent_impulse.dot(t));
+    q.tangent_mass.set(l, m.tangent_mass);
+    q.jt_a.set(l, normal.dot(x.ra));
+    q.jt_b.set(l, normal.dot(x.rb));
+  } else {
+    for (int i = 0; i < N; ++i) {
+      q.tangent_impulse[i].set(l, x.tangent_impulse[i]);
+      q.ra[i].set(l, x.ra[i]);
+      q.rb[i].set(l, x.rb[i]);
+    }
+    for (int i = 0; i < N * N; ++i) q.tangent_mass[i].set(l, m.tangent_mass.data()[i]);
+  }
+}
+
+// A point at the start of the soft step: the separation to follow through the sub-steps, and the
+// warm-start impulses.
+template <int N>
+inline void prepare_point(PointConstraint<N>& p, const Vec<N>& normal, bool warm_start) {
+  p.base_separation = p.gap - normal.dot(p.rb - p.ra);
+  p.separation = p.gap;
+  p.normal_impulse = warm_start ? p.warm_normal : 0.0;
+  p.tangent_impulse = warm_start ? p.warm_tangent : Vec<N>::Zero();
+  p.normal_total = 0.0;
+}
+
+}  // namespace wedge::contact
