@@ -181,8 +181,9 @@ struct PointMasses {
 // The effective masses of K for a contact with normal n.
 // A point whose K is not finite and positive (a lever arm from a broken manifold point) gets zero
 // effective masses, so it never receives an impulse instead of turning the bodies' velocities to NaN.
-template <int N>
-inline void set_effective_masses(PointConstraint<N>& p, const Mat<N>& k, const Vec<N>& n) {
+// (P: a PointConstraint, or anything with its kn, normal_mass and tangent_mass.)
+template <int N, class P>
+inline void set_effective_masses(P& p, const Mat<N>& k, const Vec<N>& n) {
   p.kn = k * n;
   p.normal_mass = 1.0 / n.dot(p.kn);
   const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
@@ -508,8 +509,8 @@ inline Mat<N> angular_mass_term(const SolverBody<N>& b, const Vec<N>& r) {
 }
 
 // Relative velocity of b with respect to a at the point: (v_b + r_b . w_b) - (v_a + r_a . w_a).
-template <int N>
-inline Vec<N> relative_velocity(const SolverBody<N>& a, const SolverBody<N>& b, const PointConstraint<N>& p) {
+template <int N, class P>  // (P: a PointConstraint, or anything with its lever arms ra, rb)
+inline Vec<N> relative_velocity(const SolverBody<N>& a, const SolverBody<N>& b, const P& p) {
   return b.v + dot<N>(p.rb, b.w) - a.v - dot<N>(p.ra, a.w);
 }
 

@@ -9,20 +9,56 @@
 
 namespace wedge::contact {
 
-// What the lanes take of a point's masses, from the point (2D: along t = tangent_2d(n)).
+// The tangent mass as the lanes keep it: in 2D along t = tangent_2d(n) alone (wide.hpp), else whole.
+template <int N>
+typename PointMasses<N>::Tangent lane_tangent_mass(const Mat<N>& tangent_mass, const Vec<N>& normal) {
+  if constexpr (N == 2) {
+    const Vec<2> t = tangent_2d(normal);
+    return t.dot(tangent_mass * t);
+  } else {
+    return tangent_mass;
+  }
+}
+
+// What the lanes take of a point's masses, from the point.
 template <int N>
 PointMasses<N> masses_of(const PointConstraint<N>& x, const Vec<N>& normal) {
   PointMasses<N> m;
   m.normal_mass = x.normal_mass;
   m.jn_a = x.jn_a;
   m.jn_b = x.jn_b;
-  if constexpr (N == 2) {
-    const Vec<2> t = tangent_2d(normal);
-    m.tangent_mass = t.dot(x.tangent_mass * t);
-  } else {
-    m.tangent_mass = x.tangent_mass;
-  }
+  m.tangent_mass = lane_tangent_mass(x.tangent_mass, normal);
   return m;
+}
+
+// A point as the lanes take it, but for its masses: what find_contacts builds for each point of the
+// soft step (pairs.cpp), and what fill_wide takes of a PointConstraint (lane_point).
+template <int N>
+struct LanePoint {
+  Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m
+  double separation = 0.0, base_separation = 0.0;     // m
+  double approach = 0.0;                              // m/s
+  double friction = 0.0;
+  bool sliding = false;
+  Vec<N> slip_direction = Vec<N>::Zero();
+  double normal_impulse = 0.0, normal_total = 0.0;  // N s
+  Vec<N> tangent_impulse = Vec<N>::Zero();
+};
+template <int N>
+LanePoint<N> lane_point(const PointConstraint<N>& x) {
+  LanePoint<N> q;
+  q.ra = x.ra;
+  q.rb = x.rb;
+  q.separation = x.separation;
+  q.base_separation = x.base_separation;
+  q.approach = x.approach;
+  q.friction = x.friction;
+  q.sliding = x.sliding;
+  q.slip_direction = x.slip_direction;
+  q.normal_impulse = x.normal_impulse;
+  q.normal_total = x.normal_total;
+  q.tangent_impulse = x.tangent_impulse;
+  return q;
 }
 
 // Zeroes the slots of a wide constraint: a lane without a constraint, or past its constraint's points,
@@ -68,11 +104,11 @@ void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
 
 // Lane l of slot k (0-based within w) from a point of the lane's constraint, with normal `normal`: x for
 // all but the masses, m for those; dn_a and dn_b (I^-1 jn) only where the wide constraint keeps them
-// (w.inertia >= 0). A constraint with fewer points than the slots puts a zero point (PointConstraint{})
-// in the slots past its last: in 2D its friction fields are then t . 0, as the point's own would be.
+// (w.inertia >= 0). A constraint with fewer points than the slots puts a zero point (LanePoint{}) in
+// the slots past its last: in 2D its friction fields are then t . 0, as the point's own would be.
 template <int N>
 [[gnu::always_inline]] inline void put_lane_point(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
-                                                  const Vec<N>& normal, const PointConstraint<N>& x,
+                                                  const Vec<N>& normal, const LanePoint<N>& x,
                                                   const PointMasses<N>& m, const typename PointMasses<N>::Biv& dn_a,
                                                   const typename PointMasses<N>::Biv& dn_b) {
   constexpr int K = kBiv<N>;
@@ -115,13 +151,15 @@ template <int N>
 }
 
 // A point at the start of the soft step: the separation to follow through the sub-steps, and the
-// warm-start impulses.
-template <int N>
-inline void prepare_point(PointConstraint<N>& p, const Vec<N>& normal, bool warm_start) {
-  p.base_separation = p.gap - normal.dot(p.rb - p.ra);
-  p.separation = p.gap;
-  p.normal_impulse = warm_start ? p.warm_normal : 0.0;
-  p.tangent_impulse = warm_start ? p.warm_tangent : Vec<N>::Zero();
+// warm-start impulses. (P: a PointConstraint, or a LanePoint with the gap as its separation; warm_normal
+// and warm_tangent the last step's impulses.)
+template <int N, class P>
+inline void prepare_point(P& p, const Vec<N>& normal, double gap, bool warm_start, double warm_normal,
+                          const Vec<N>& warm_tangent) {
+  p.base_separation = gap - normal.dot(p.rb - p.ra);
+  p.separation = gap;
+  p.normal_impulse = warm_start ? warm_normal : 0.0;
+  p.tangent_impulse = warm_start ? warm_tangent : Vec<N>::Zero();
   p.normal_total = 0.0;
 }
 

@@ -324,9 +324,19 @@ bool masses_recycled(const ContactState<N>& s, const Pair<N>& p, const SolverBod
 // point was not slipping at the start of the step, else kinetic, against the slip) and the warm start
 // from the last step's point w (-1: none).
 template <int N>
-void make_point(const ContactState<N>& s, const Pair<N>& p, const Constraint<N>& c, int k, int w, double slip_speed,
-                PointConstraint<N>& q) {
-  q = PointConstraint<N>{};
+struct PointStart {
+  Vec<N> ra, rb;           // m
+  double gap, approach;    // m, m/s
+  double friction;
+  bool sliding;
+  Vec<N> slip_direction;   // unit, or 0 if not sliding
+  double warm_normal;      // N s
+  Vec<N> warm_tangent;
+};
+template <int N>
+PointStart<N> make_point(const ContactState<N>& s, const Pair<N>& p, const Constraint<N>& c, int k, int w,
+                         double slip_speed) {
+  PointStart<N> q;
   q.ra = p.arm_a[k];
   q.rb = p.arm_b[k];
   q.gap = -p.manifold.points[k].depth;
@@ -335,24 +345,21 @@ void make_point(const ContactState<N>& s, const Pair<N>& p, const Constraint<N>&
   const Vec<N> slip = u - q.approach * c.normal;
   const double slip_norm = slip.norm();
   q.sliding = slip_norm > slip_speed;
-  if (q.sliding) q.slip_direction = slip / slip_norm;
+  q.slip_direction = q.sliding ? Vec<N>(slip / slip_norm) : Vec<N>::Zero();
   q.friction = q.sliding ? c.kinetic_friction : c.friction;
+  q.warm_normal = 0.0;
+  q.warm_tangent.setZero();
   if (w >= 0) {
     q.warm_normal = p.warm_normal[w];
     q.warm_tangent = p.warm_tangent[w] - p.warm_tangent[w].dot(c.normal) * c.normal;
   }
+  return q;
 }
 
-// K = delta/m + [r]_*^T I^-1 [r]_* of the point's two bodies (paper section 6): its effective masses and
-// the normal's Jacobian rows.
+// K = delta/m + [r]_*^T I^-1 [r]_* of the point's two bodies (paper section 6), with lever arms ra, rb.
 template <int N>
-void form_masses(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& normal, PointConstraint<N>& q) {
-  set_effective_masses(q,
-                       Mat<N>((a.inv_mass + b.inv_mass) * Mat<N>::Identity() + angular_mass_term(a, q.ra) +
-                              angular_mass_term(b, q.rb)),
-                       normal);
-  q.jn_a = outer<N>(q.ra, normal).c;
-  q.jn_b = outer<N>(q.rb, normal).c;
+Mat<N> point_k(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& ra, const Vec<N>& rb) {
+  return (a.inv_mass + b.inv_mass) * Mat<N>::Identity() + angular_mass_term(a, ra) + angular_mass_term(b, rb);
 }
 
 // What the constraint of pair p leaves in it: where its points are, how fast they approached (events),
@@ -379,17 +386,47 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
   warm_matches(p, bodies[c.a].center, match_distance, match);
   double approach_speed = 0.0;
   for (int k = 0; k < c.count; ++k) {
+    const PointStart<N> x = make_point(s, p, c, k, match[k], slip_speed);
+    approach_speed = std::max(approach_speed, -x.approach);
     // (The array is not cleared and value-initialised each step: that was one more sweep over it.)
     PointConstraint<N>& q = s.points[c.first + k];
-    make_point(s, p, c, k, match[k], slip_speed, q);
-    approach_speed = std::max(approach_speed, -q.approach);
-    form_masses(sa, sb, c.normal, q);
+    q = PointConstraint<N>{};
+    q.ra = x.ra;
+    q.rb = x.rb;
+    q.gap = x.gap;
+    q.approach = x.approach;
+    q.friction = x.friction;
+    q.sliding = x.sliding;
+    q.slip_direction = x.slip_direction;
+    q.warm_normal = x.warm_normal;
+    q.warm_tangent = x.warm_tangent;
+    set_effective_masses(q, point_k(sa, sb, q.ra, q.rb), c.normal);
+    q.jn_a = outer<N>(q.ra, c.normal).c;
+    q.jn_b = outer<N>(q.rb, c.normal).c;
     q.dn_a = inverse_inertia_times(sa, q.jn_a);
     q.dn_b = inverse_inertia_times(sb, q.jn_b);
     q.pseudo_mass = q.normal_mass;
   }
   note_constraint(p, sa, sb, index, first, approach_speed);
   s.constraints[index] = c;
+}
+
+// The masses of a soft step point with lever arms ra, rb, formed (build_constraint's formulas).
+template <int N>
+PointMasses<N> form_point_masses(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& ra, const Vec<N>& rb,
+                                 const Vec<N>& normal) {
+  struct {
+    Vec<N> kn;
+    double normal_mass;
+    Mat<N> tangent_mass;
+  } formed;
+  set_effective_masses(formed, point_k(a, b, ra, rb), normal);
+  PointMasses<N> m;
+  m.normal_mass = formed.normal_mass;
+  m.tangent_mass = lane_tangent_mass(formed.tangent_mass, normal);
+  m.jn_a = outer<N>(ra, normal).c;
+  m.jn_b = outer<N>(rb, normal).c;
+  return m;
 }
 
 // The soft step: the constraints of wide constraint w, each point built, prepared and written straight
@@ -408,6 +445,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   clear_slots(s, w);
   fill_wide_header(s, w);
   const bool inertia = w.inertia >= 0;
+  static const LanePoint<N> none{};
   for (int l = 0; l < kLanes<N>; ++l) {
     if (w.constraint[l] < 0) continue;
     const Constraint<N>& c = s.constraints[w.constraint[l]];
@@ -416,29 +454,31 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     const SolverBody<N>& sb = s.solver_bodies[c.b];
     std::array<int, kMaxManifoldPoints<N>> match;
     warm_matches(p, bodies[c.a].center, settings.contact_margin, match);
-    const PointMasses<N>* last =
-        masses_recycled(s, p, sa, sb) ? &s.previous_masses[p.previous_first] : nullptr;
+    const PointMasses<N>* last = masses_recycled(s, p, sa, sb) ? &s.previous_masses[p.previous_first] : nullptr;
     double approach_speed = 0.0;
-    PointConstraint<N> q;
-    for (int k = 0; k < w.count; ++k) {
-      if (k >= c.count) {  // (a zero point, as fill_wide's)
-        q = PointConstraint<N>{};
-        put_lane_point(s, w, k, l, c.normal, q, masses_of(q, c.normal), q.dn_a, q.dn_b);
-        continue;
-      }
-      make_point(s, p, c, k, match[k], settings.static_slip_speed, q);
-      approach_speed = std::max(approach_speed, -q.approach);
+    for (int k = 0; k < c.count; ++k) {
+      const PointStart<N> x = make_point(s, p, c, k, match[k], settings.static_slip_speed);
+      approach_speed = std::max(approach_speed, -x.approach);
       PointMasses<N>& m = s.point_masses[c.first + k];
-      if (last) {
-        m = last[k];
-      } else {
-        form_masses(sa, sb, c.normal, q);
-        m = masses_of(q, c.normal);
-      }
-      prepare_point(q, c.normal, settings.warm_start);
+      m = last ? last[k] : form_point_masses(sa, sb, x.ra, x.rb, c.normal);
+      LanePoint<N> q;
+      q.ra = x.ra;
+      q.rb = x.rb;
+      q.approach = x.approach;
+      q.friction = x.friction;
+      q.sliding = x.sliding;
+      q.slip_direction = x.slip_direction;
+      prepare_point(q, c.normal, x.gap, settings.warm_start, x.warm_normal, x.warm_tangent);
       const Biv dn_a = inertia ? Biv(inverse_inertia_times(sa, m.jn_a)) : Biv::Zero();
       const Biv dn_b = inertia ? Biv(inverse_inertia_times(sb, m.jn_b)) : Biv::Zero();
       put_lane_point(s, w, k, l, c.normal, q, m, dn_a, dn_b);
+    }
+    // (Past its last point, zero points, as fill_wide's: in 2D their friction fields are t . 0.)
+    if (c.count < w.count) {
+      PointMasses<N> pad;
+      pad.tangent_mass = lane_tangent_mass(Mat<N>(Mat<N>::Zero()), c.normal);
+      const Biv zero = Biv::Zero();
+      for (int k = c.count; k < w.count; ++k) put_lane_point(s, w, k, l, c.normal, none, pad, zero, zero);
     }
     note_constraint(p, sa, sb, w.constraint[l], c.first, approach_speed);
   }

@@ -186,7 +186,7 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
     const Constraint<N>& c = s.constraints[w.constraint[l]];
     for (int k = 0; k < w.count; ++k) {
       const PointConstraint<N>& x = k < c.count ? s.points[c.first + k] : none;
-      put_lane_point(s, w, k, l, c.normal, x, masses_of(x, c.normal), x.dn_a, x.dn_b);
+      put_lane_point(s, w, k, l, c.normal, lane_point(x), masses_of(x, c.normal), x.dn_a, x.dn_b);
     }
   }
 }
@@ -307,7 +307,10 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
 // A constraint's points at the start of the soft step (prepare_point).
 template <int N>
 void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start) {
-  for (int k = c.first; k < c.first + c.count; ++k) prepare_point(s.points[k], c.normal, warm_start);
+  for (int k = c.first; k < c.first + c.count; ++k) {
+    PointConstraint<N>& p = s.points[k];
+    prepare_point(p, c.normal, p.gap, warm_start, p.warm_normal, p.warm_tangent);
+  }
 }
 
 // After a pass, in one sweep over the solver bodies: what it changed goes to the warm start

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "wedge/collision/manifold.hpp"
 #include "wedge/ga/types.hpp"
@@ -61,7 +62,8 @@ struct WideT {
   using Pack = typename PackOf<L>::Value;
   Pack p[P];
   WEDGE_WIDE_INLINE double operator[](int l) const { return p[l / L][l % L]; }
-  void set(int l, double x) { p[l / L][l % L] = x; }
+  // (Lane l is the l-th double of the packs, whatever their width: one store.)
+  void set(int l, double x) { std::memcpy(reinterpret_cast<char*>(p) + sizeof(double) * l, &x, sizeof(double)); }
 };
 template <int P, int L = 2>
 struct WideMaskT {
