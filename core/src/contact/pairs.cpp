@@ -490,7 +490,6 @@ template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                        const ContactSettings& settings) {
   const bool soft = settings.solver == ContactSolver::SoftStep;
-  s.constraints.clear();
   // (The last step's masses are kept for the recycled pairs; the build writes every one it uses.)
   if (soft) s.point_masses.swap(s.previous_masses);
   s.constraint_pairs.clear();
@@ -510,7 +509,8 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   s.colour_start.clear();
   if (soft) colour_constraints(s, bodies);
   // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), then
-  // every constraint on its own (split over the workers).
+  // every constraint on its own (split over the workers). (Not cleared first: the build writes each
+  // constraint whole, and value-initialising them all was a tenth of this function's time.)
   s.constraints.resize(s.constraint_pairs.size());
   int total = 0;
   for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
