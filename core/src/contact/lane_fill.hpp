@@ -44,17 +44,23 @@ struct LanePoint {
   double normal_impulse = 0.0, normal_total = 0.0;  // N s
   Vec<N> tangent_impulse = Vec<N>::Zero();
 };
+// What every form of a point (PointConstraint, LanePoint, pairs.cpp's PointStart) takes from the one
+// it is made from when the step begins: lever arms, approach speed and friction.
+template <class To, class From>
+void copy_point_start(To& to, const From& from) {
+  to.ra = from.ra;
+  to.rb = from.rb;
+  to.approach = from.approach;
+  to.friction = from.friction;
+  to.sliding = from.sliding;
+  to.slip_direction = from.slip_direction;
+}
 template <int N>
 LanePoint<N> lane_point(const PointConstraint<N>& x) {
   LanePoint<N> q;
-  q.ra = x.ra;
-  q.rb = x.rb;
+  copy_point_start(q, x);
   q.separation = x.separation;
   q.base_separation = x.base_separation;
-  q.approach = x.approach;
-  q.friction = x.friction;
-  q.sliding = x.sliding;
-  q.slip_direction = x.slip_direction;
   q.normal_impulse = x.normal_impulse;
   q.normal_total = x.normal_total;
   q.tangent_impulse = x.tangent_impulse;

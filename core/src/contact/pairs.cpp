@@ -391,13 +391,8 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     // (The array is not cleared and value-initialised each step: that was one more sweep over it.)
     PointConstraint<N>& q = s.points[c.first + k];
     q = PointConstraint<N>{};
-    q.ra = x.ra;
-    q.rb = x.rb;
+    copy_point_start(q, x);
     q.gap = x.gap;
-    q.approach = x.approach;
-    q.friction = x.friction;
-    q.sliding = x.sliding;
-    q.slip_direction = x.slip_direction;
     q.warm_normal = x.warm_normal;
     q.warm_tangent = x.warm_tangent;
     set_effective_masses(q, point_k(sa, sb, q.ra, q.rb), c.normal);
@@ -462,12 +457,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
       PointMasses<N>& m = s.point_masses[c.first + k];
       m = last ? last[k] : form_point_masses(sa, sb, x.ra, x.rb, c.normal);
       LanePoint<N> q;
-      q.ra = x.ra;
-      q.rb = x.rb;
-      q.approach = x.approach;
-      q.friction = x.friction;
-      q.sliding = x.sliding;
-      q.slip_direction = x.slip_direction;
+      copy_point_start(q, x);
       prepare_point(q, c.normal, x.gap, settings.warm_start, x.warm_normal, x.warm_tangent);
       const Biv dn_a = inertia ? Biv(inverse_inertia_times(sa, m.jn_a)) : Biv::Zero();
       const Biv dn_b = inertia ? Biv(inverse_inertia_times(sb, m.jn_b)) : Biv::Zero();
