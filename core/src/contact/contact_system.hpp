@@ -124,8 +124,9 @@ struct alignas(64) SolverBody {
 // accumulated impulses of the current stage.
 template <int N>
 struct PointConstraint {
-  // (The soft step's passes read these from the lanes, wide.hpp, packed from here once per step; after
-  // the last sub-step its accumulated impulses go to the pair, not back here: unpack_wide.)
+  // (The soft step builds no PointConstraints: its points go straight into the lanes, wide.hpp and
+  // build_wide in pairs.cpp; fill_wide packs these the same way, for the tests. After the last
+  // sub-step the lanes' impulses go to the pairs: unpack_wide.)
   double separation = 0.0;       // m, soft step: the separation when the step began (the lanes follow it)
   double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
   double normal_impulse = 0.0;   // N s, accumulated in the current stage
@@ -443,10 +444,10 @@ template <int N>
 void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings);
 // The step's colour-ordered constraints into lanes (wide.hpp): assign_lanes gives each a lane (within a
 // colour by point count, most first, kLanes to a wide constraint; the uncoloured group one to a wide
-// constraint, in order) from the constraints' bodies and point counts alone; fill_wide copies one wide
-// constraint's points, once built and prepared (prepare_points: the step's separations and warm-start
-// impulses), into its lanes. find_contacts runs them wide constraint by wide constraint, each right
-// after building its constraints, while their points are in the cache; pack_wide does all at once.
+// constraint, in order) from the constraints' bodies and point counts alone. find_contacts then builds
+// each point straight into its lane (pairs.cpp, build_wide). fill_wide does the same from points built
+// as PointConstraints and prepared (prepare_points: the step's separations and warm-start impulses),
+// through the same writes (lane_fill.hpp), and pack_wide for all at once: the tests' reference.
 template <int N>
 void assign_lanes(ContactState<N>& state);
 template <int N>

@@ -192,9 +192,8 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
 }
 
 // The lanes' accumulated impulses to the pairs, where the events, restitution and the next step's warm
-// start read them (the points keep their impulses as the step began: the paper's solver alone moves them
-// back, keep_for_warm_start and keep_totals). Writing them to the points as well cost a sweep over
-// them in colour order, long pushed out of the cache by the lanes.
+// start read them (the soft step keeps no points; the paper's solver keeps its impulses in its points,
+// keep_for_warm_start and keep_totals).
 template <int N>
 void unpack_wide(ContactState<N>& s) {
   s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
