@@ -159,7 +159,7 @@ struct PointConstraint {
 };
 
 // What the soft step's lanes take of a point's effective masses and Jacobian (the rest of its lanes come
-// from its PointConstraint): formed from K, or, for a recycled pair of isotropic bodies, the last step's
+// from its LanePoint, lane_fill.hpp): formed from K, or, for a recycled pair of isotropic bodies, the last step's
 // (ContactState::point_masses, Pair::previous_first). 2D keeps the tangent mass along t alone (wide.hpp).
 template <int N>
 struct PointMasses {
@@ -348,32 +348,6 @@ void for_shares(parallel::Workers& workers, const std::vector<Item>& items, int 
     fn(cut(part), cut(part + 1));
   });
 }
-// fn(begin, end, independent) over the constraints in solver order, in runs, for passes that change the
-// bodies' velocities: colour by colour, each colour split over the workers (its constraints share no
-// moving body: independent, so a pass may interleave them and stay bit-identical), then the uncoloured
-// group in order on this thread (not independent). Without colours (the paper's solver), all in order.
-template <int N, class F>
-void for_each_constraint_run(ContactState<N>& s, F&& fn) {
-  const int groups = int(s.colour_start.size()) - 1;
-  if (groups <= 0) {
-    fn(0, int(s.constraints.size()), false);
-    return;
-  }
-  for (int g = 0; g + 1 < groups; ++g) {
-    const int first = s.colour_start[g], last = s.colour_start[g + 1];
-    if (first == last) continue;
-    for_shares(s.workers, s.constraints, first, last, 1, [&](int begin, int end) { fn(begin, end, true); });
-  }
-  fn(s.colour_start[groups - 1], s.colour_start[groups], false);
-}
-// fn(constraint) for every constraint in solver order (as for_each_constraint_run).
-template <int N, class F>
-void for_each_constraint_by_colour(ContactState<N>& s, F&& fn) {
-  for_each_constraint_run(s, [&](int begin, int end, bool) {
-    for (int k = begin; k < end; ++k) fn(s.constraints[k]);
-  });
-}
-
 template <int N>
 using Shapes = std::vector<std::shared_ptr<const Shape<N>>>;
 

@@ -62,22 +62,27 @@ void run_lanes(ContactState<N>& s, const Kernel& kernel, int begin, int end) {
   kernel.template run<LaneTypes<N, 2>>(s, begin, end);
 }
 
-// A kernel over the wide constraints in solver order: colour by colour, each colour split over the
-// workers in equal shares of its slots, then the uncoloured group (one constraint per wide constraint)
-// on this thread.
-template <int N, class Kernel>
-void for_each_wide(ContactState<N>& s, const Kernel& kernel) {
+// fn(begin, end) over the wide constraints in solver order, for work that changes the bodies'
+// velocities: colour by colour, each colour split over the workers in equal shares of its slots (its
+// constraints share no moving body, so the shares are independent and the result bit-identical), then
+// the uncoloured group (one constraint per wide constraint, in order) on this thread.
+template <int N, class F>
+void for_each_wide_run(ContactState<N>& s, F&& fn) {
   const int groups = int(s.wide_start.size()) - 1;
   for (int g = 0; g < groups; ++g) {
     const int first = s.wide_start[g], last = s.wide_start[g + 1];
     if (first == last) continue;
     if (g + 1 < groups) {
-      for_shares(s.workers, s.wide, first, last, kLanes<N>,
-                 [&](int begin, int end) { run_lanes(s, kernel, begin, end); });
+      for_shares(s.workers, s.wide, first, last, kLanes<N>, fn);
     } else {
-      run_lanes(s, kernel, first, last);
+      fn(first, last);
     }
   }
+}
+// A lane kernel over the wide constraints in solver order (for_each_wide_run).
+template <int N, class Kernel>
+void for_each_wide(ContactState<N>& s, const Kernel& kernel) {
+  for_each_wide_run(s, [&](int begin, int end) { run_lanes(s, kernel, begin, end); });
 }
 
 // The soft step's warm start, body by body (warm_start_substep): after a contact pass that began with
@@ -126,40 +131,41 @@ void warm_start_substep(ContactState<N>& s) {
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
 // step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule). The accumulated
 // impulses are the pair's (unpack_wide): warm_normal the last sub-step's, normal_impulse the step's.
-// The points are read from the lanes, wide constraint by wide constraint: within a colour no two share
-// a moving body, so this is the colour order's answer.
+// The points are read from the lanes, in solver order and split over the workers (for_each_wide_run).
 template <int N>
 void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
   using Biv = typename PointMasses<N>::Biv;
-  for (const WideConstraint<N>& w : s.wide) {
-    for (int l = 0; l < kLanes<N>; ++l) {
-      if (w.constraint[l] < 0) continue;
-      const Constraint<N>& c = s.constraints[w.constraint[l]];
-      if (c.restitution <= 0.0) continue;
-      SolverBody<N>& a = s.solver_bodies[c.a];
-      SolverBody<N>& b = s.solver_bodies[c.b];
-      Pair<N>& pair = s.pairs[c.pair];
-      for (int k = 0; k < c.count; ++k) {
-        const WidePoint<N>& q = s.wide_points[w.first + k];
-        const double approach = s.wide_approach[w.first + k][l];
-        double& impulse = pair.warm_normal[k];
-        double& total = pair.normal_impulse[k];
-        if (approach > -settings.restitution_threshold || total <= 0.0) continue;
-        Biv jn_a, jn_b;
-        for (int i = 0; i < kBiv<N>; ++i) {
-          jn_a[i] = q.jn_a[i][l];
-          jn_b[i] = q.jn_b[i][l];
-        }
-        const double un = c.normal.dot(b.v - a.v) + jn_b.dot(b.w.c) - jn_a.dot(a.w.c);
-        const double next = std::max(impulse - q.normal_mass[l] * (un + c.restitution * approach), 0.0);
-        const double change = next - impulse;
-        impulse = next;
-        total += change;
-        apply_normal_impulse(a, b, c.normal, change, Biv(inverse_inertia_times(a, jn_a)),
-                             Biv(inverse_inertia_times(b, jn_b)));
+  const auto lane = [&](const WideConstraint<N>& w, int l) {
+    const Constraint<N>& c = s.constraints[w.constraint[l]];
+    if (c.restitution <= 0.0) return;
+    SolverBody<N>& a = s.solver_bodies[c.a];
+    SolverBody<N>& b = s.solver_bodies[c.b];
+    Pair<N>& pair = s.pairs[c.pair];
+    for (int k = 0; k < c.count; ++k) {
+      const WidePoint<N>& q = s.wide_points[w.first + k];
+      const double approach = s.wide_approach[w.first + k][l];
+      double& impulse = pair.warm_normal[k];
+      double& total = pair.normal_impulse[k];
+      if (approach > -settings.restitution_threshold || total <= 0.0) continue;
+      Biv jn_a, jn_b;
+      for (int i = 0; i < kBiv<N>; ++i) {
+        jn_a[i] = q.jn_a[i][l];
+        jn_b[i] = q.jn_b[i][l];
       }
+      const double un = c.normal.dot(b.v - a.v) + jn_b.dot(b.w.c) - jn_a.dot(a.w.c);
+      const double next = std::max(impulse - q.normal_mass[l] * (un + c.restitution * approach), 0.0);
+      const double change = next - impulse;
+      impulse = next;
+      total += change;
+      apply_normal_impulse(a, b, c.normal, change, Biv(inverse_inertia_times(a, jn_a)),
+                           Biv(inverse_inertia_times(b, jn_b)));
     }
-  }
+  };
+  for_each_wide_run(s, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i)
+      for (int l = 0; l < kLanes<N>; ++l)
+        if (s.wide[i].constraint[l] >= 0) lane(s.wide[i], l);
+  });
 }
 
 }  // namespace
