@@ -247,12 +247,22 @@ struct ContactState {
   std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, merged_pairs;  // scratch for the merge
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
   std::vector<int> narrow_list;             // the narrow phase's pairs of one round
+  std::vector<unsigned char> narrow_wakes;  // per narrow_list entry: it touches a sleeping body
 
   std::vector<SolverBody<N>> solver_bodies;  // per body
   std::vector<Constraint<N>> constraints;    // in pair order (the paper's solver) or colour order (soft step)
   std::vector<int> constraint_pairs;         // the pairs that make them, in that order
   std::vector<std::uint32_t> colour_mask;    // per body: the colours its constraints took this step
   std::vector<int> colour_of, colour_order;  // colouring scratch
+  // Per constraint-to-be, in pair order: what colouring and placing its points need of its pair, read in
+  // the one sweep over the pairs that finds them (the pairs are large, and read in colour order each
+  // of their lines is a cache miss).
+  struct Seed {
+    std::uint32_t a = 0, b = 0;
+    int count = 0;
+    bool move_a = false, move_b = false;
+  };
+  std::vector<Seed> seeds;
   // Soft step: where each colour's constraints begin, the uncoloured group's last, then the end (empty
   // for the paper's solver, whose constraints are in pair order).
   std::vector<int> colour_start;

@@ -176,12 +176,20 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
                          (moving_kinematic(b) && a.is_dynamic())))
         s.narrow_list.push_back(int(pi));
     }
+    // (Whether a pair touches a sleeping body is noted as it is collided, and only those pairs are
+    // read again, in order, to wake: reading every pair again was a sweep over kilobytes of pairs.)
+    s.narrow_wakes.resize(s.narrow_list.size());
     s.workers.for_ranges(int(s.narrow_list.size()), kConstraintGrain, [&](int begin, int end) {
-      for (int k = begin; k < end; ++k) collide_pair(s, s.pairs[s.narrow_list[k]], bodies, shapes, settings, h);
+      for (int k = begin; k < end; ++k) {
+        Pair<N>& p = s.pairs[s.narrow_list[k]];
+        collide_pair(s, p, bodies, shapes, settings, h);
+        const auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.awake[i]; };
+        s.narrow_wakes[k] = p.manifold.count > 0 && (sleeps(p.a) || sleeps(p.b));
+      }
     });
-    for (const int pi : s.narrow_list) {
-      const Pair<N>& p = s.pairs[pi];
-      if (p.manifold.count == 0) continue;
+    for (std::size_t k = 0; k < s.narrow_list.size(); ++k) {
+      if (!s.narrow_wakes[k]) continue;
+      const Pair<N>& p = s.pairs[s.narrow_list[k]];
       for (const std::uint32_t i : {p.a, p.b})
         if (bodies[i].is_dynamic() && !s.awake[i]) {
           s.wake_island(int(i));
@@ -260,30 +268,27 @@ void warm_matches(const Pair<N>& p, const Vec<N>& centre_a, double distance,
 // are only read and take no colour. A body in more than kColours constraints sends the rest to a last,
 // uncoloured group. Deterministic: a function of the pair order alone.
 template <int N>
-void colour_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+void colour_constraints(ContactState<N>& s, std::size_t bodies) {
   constexpr int kColours = 32;  // the bits of a body's mask: countr_one gives kColours when all are taken
   static_assert(kColours == std::numeric_limits<std::uint32_t>::digits);
-  s.colour_mask.assign(bodies.size(), 0);
-  s.colour_of.resize(s.constraint_pairs.size());
+  s.colour_mask.assign(bodies, 0);
+  s.colour_of.resize(s.seeds.size());
   std::array<int, kColours + 3> start{};
-  for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
-    const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
-    const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
-    const std::uint32_t used = (da ? s.colour_mask[p.a] : 0u) | (db ? s.colour_mask[p.b] : 0u);
+  for (std::size_t k = 0; k < s.seeds.size(); ++k) {
+    const auto& e = s.seeds[k];
+    const std::uint32_t used = (e.move_a ? s.colour_mask[e.a] : 0u) | (e.move_b ? s.colour_mask[e.b] : 0u);
     const int c = std::countr_one(used);
     if (c < kColours) {
-      if (da) s.colour_mask[p.a] |= 1u << c;
-      if (db) s.colour_mask[p.b] |= 1u << c;
+      if (e.move_a) s.colour_mask[e.a] |= 1u << c;
+      if (e.move_b) s.colour_mask[e.b] |= 1u << c;
     }
     s.colour_of[k] = c;
     ++start[c + 2];
   }
   for (int c = 2; c < kColours + 3; ++c) start[c] += start[c - 1];  // start[c + 1]: where colour c begins
   s.colour_start.assign(start.begin() + 1, start.end());
-  s.colour_order.resize(s.constraint_pairs.size());
-  for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k)
-    s.colour_order[start[s.colour_of[k] + 1]++] = s.constraint_pairs[k];
-  s.constraint_pairs.swap(s.colour_order);
+  s.colour_order.resize(s.seeds.size());
+  for (std::size_t k = 0; k < s.seeds.size(); ++k) s.colour_order[start[s.colour_of[k] + 1]++] = int(k);
 }
 
 // The constraint of pair pi, its points from `first` on: its bodies, normal and materials.
@@ -334,8 +339,8 @@ struct PointStart {
   Vec<N> warm_tangent;
 };
 template <int N>
-PointStart<N> make_point(const ContactState<N>& s, const Pair<N>& p, const Constraint<N>& c, int k, int w,
-                         double slip_speed) {
+[[gnu::always_inline]] inline PointStart<N> make_point(const ContactState<N>& s, const Pair<N>& p,
+                                                       const Constraint<N>& c, int k, int w, double slip_speed) {
   PointStart<N> q;
   q.ra = p.arm_a[k];
   q.rb = p.arm_b[k];
@@ -343,9 +348,16 @@ PointStart<N> make_point(const ContactState<N>& s, const Pair<N>& p, const Const
   const Vec<N> u = relative_velocity(s.solver_bodies[c.a], s.solver_bodies[c.b], q);
   q.approach = c.normal.dot(u);
   const Vec<N> slip = u - q.approach * c.normal;
-  const double slip_norm = slip.norm();
-  q.sliding = slip_norm > slip_speed;
-  q.slip_direction = q.sliding ? Vec<N>(slip / slip_norm) : Vec<N>::Zero();
+  // (|slip| > slip_speed, its square root taken only where it may be: sqrt is monotonic and correctly
+  // rounded, so below a bound a little under slip_speed^2 the answer is no, to the bit.)
+  const double slip2 = slip.squaredNorm();
+  q.sliding = false;
+  q.slip_direction.setZero();
+  if (slip2 > slip_speed * slip_speed * (1.0 - 1e-9)) {
+    const double slip_norm = std::sqrt(slip2);
+    q.sliding = slip_norm > slip_speed;
+    if (q.sliding) q.slip_direction = slip / slip_norm;
+  }
   q.friction = q.sliding ? c.kinetic_friction : c.friction;
   q.warm_normal = 0.0;
   q.warm_tangent.setZero();
@@ -483,6 +495,7 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   // (The last step's masses are kept for the recycled pairs; the build writes every one it uses.)
   if (soft) s.point_masses.swap(s.previous_masses);
   s.constraint_pairs.clear();
+  s.seeds.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
     p.constraint = -1;
@@ -494,22 +507,30 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
       continue;
     }
     p.normal_impulse.fill(0.0);
-    if (moves(s, bodies, p.a) || moves(s, bodies, p.b)) s.constraint_pairs.push_back(int(pi));
+    const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
+    if (!da && !db) continue;
+    s.constraint_pairs.push_back(int(pi));
+    s.seeds.push_back({p.a, p.b, p.manifold.count, da, db});
   }
   s.colour_start.clear();
-  if (soft) colour_constraints(s, bodies);
-  // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), then
-  // every constraint on its own (split over the workers). (Not cleared first: the build writes each
-  // constraint whole, and value-initialising them all was a tenth of this function's time.)
-  s.constraints.resize(s.constraint_pairs.size());
+  // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
+  // colour order (soft step) or pair order, from the seeds; then every constraint on its own (split
+  // over the workers). (Not cleared first: the build writes each constraint whole, and
+  // value-initialising them all was a tenth of this function's time.)
+  if (soft) colour_constraints(s, bodies.size());
+  const std::size_t count = s.seeds.size();
+  s.constraints.resize(count);
+  if (soft) s.colour_order.swap(s.constraint_pairs);  // (the scratch takes the pair-order list)
   int total = 0;
-  for (std::size_t k = 0; k < s.constraint_pairs.size(); ++k) {
-    const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
+  for (std::size_t k = 0; k < count; ++k) {
+    const int seed = soft ? s.constraint_pairs[k] : int(k);
+    const auto& e = s.seeds[seed];
+    if (soft) s.constraint_pairs[k] = s.colour_order[seed];
     Constraint<N>& c = s.constraints[k];
     c.first = total;
-    c.count = p.manifold.count;
-    c.a = int(p.a);
-    c.b = int(p.b);
+    c.count = e.count;
+    c.a = int(e.a);
+    c.b = int(e.b);
     total += c.count;
   }
   if (soft) {
