@@ -33,14 +33,17 @@
 namespace wedge::contact {
 
 // A pair of bodies whose bounding boxes overlap (or a half-space and a body below its plane), a < b.
+// Its fields are in the order the step reads them: the soft step's build reads the pairs in colour
+// order, where each cache line of a pair is a miss, and all it reads comes first (through arm_b, five
+// lines in 2D); what the events and the recycling read follows.
 template <int N>
-struct Pair {
+struct alignas(64) Pair {
   std::uint32_t a = 0, b = 0;
-  Manifold<N> manifold;
-  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
-  double approach_speed = 0.0;  // m/s, >= 0: the fastest its points approached when the step began (events)
-  bool touching = false;   // received a normal impulse or penetrated in the last step
   bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
+  bool touching = false;   // received a normal impulse or penetrated in the last step
+  bool recycled = false;   // (below)
+  bool cached = false;     // (contact recycling, below)
+  Manifold<N> manifold;
   int constraint = -1;     // index of its constraint in this step, or -1
   // Where its points are in ContactState::points or point_masses (this step) and previous_masses (the
   // last step), or -1; recycled (soft step): this step's manifold is the last step's carried along
@@ -48,22 +51,23 @@ struct Pair {
   // effective masses are the same, and the build takes them from the last step's. mass_key: the
   // bodies' 1/m and isotropic 1/I those masses were formed with.
   int points_first = -1, previous_first = -1;
-  bool recycled = false;
+  int warm_count = 0;      // (warm start, below)
+  double approach_speed = 0.0;  // m/s, >= 0: the fastest its points approached when the step began (events)
   std::array<double, 4> mass_key{};
   // Warm start: the contact-stage impulses of the last step per feature id, given back to the points
   // that continue them (same id, or same place), so the iterations start from last step's answer,
-  int warm_count = 0;
   std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
   std::array<double, kMaxManifoldPoints<N>> warm_normal{};
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
-  // and their lever arms from a's centre (world frame), to match points whose id changed by place.
-  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_arm = zero_vectors();
   // The lever arms of the manifold's points from a's and b's centres (world frame) in this step: equal
   // to point - centre for a fresh manifold, carried along with each body for a recycled one.
   std::array<Vec<N>, kMaxManifoldPoints<N>> arm_a = zero_vectors(), arm_b = zero_vectors();
-  // Contact recycling (recycling.cpp): the state when the manifold was last computed, to carry it along
-  // while the bodies barely move relative to each other.
-  bool cached = false;
+  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
+  // and the warm points' lever arms from a's centre (world frame), to match points whose id changed
+  // by place.
+  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_arm = zero_vectors();
+  // Contact recycling (recycling.cpp): the state when the manifold was last computed (cached), to carry
+  // it along while the bodies barely move relative to each other.
   Mat<N> rotation_a = Mat<N>::Identity(), rotation_b = Mat<N>::Identity();  // the bodies' rotations then
   Vec<N> relative_position = Vec<N>::Zero();       // m, b's centre in a's frame then
   std::array<Vec<N>, kMaxManifoldPoints<N>> anchor_a = zero_vectors(), anchor_b = zero_vectors();  // arms then
@@ -89,6 +93,7 @@ struct alignas(64) SolverBody {
   Bivector<N> w{};
   bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
   bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else World does it)
+  bool advances = false;    // not static and awake: the soft step's position update moves it
   // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
   // next sub-step (soft_step.cpp, warm_start_substep).
   Vec<N> warm_v = Vec<N>::Zero();
@@ -246,6 +251,7 @@ struct ContactState {
   std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
   std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, merged_pairs;  // scratch for the merge
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
+  std::vector<std::uint64_t> pair_keys;     // a << 32 | b of each pair, in order (merge_pairs' check)
   std::vector<int> narrow_list;             // the narrow phase's pairs of one round
   std::vector<unsigned char> narrow_wakes;  // per narrow_list entry: it touches a sleeping body
 

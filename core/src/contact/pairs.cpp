@@ -84,15 +84,17 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
 template <int N>
 void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   s.ended.clear();
-  // Usually (a resting heap) the list is unchanged: keep it rather than copy every pair (4D: kilobytes).
+  // Usually (a resting heap) the list is unchanged: keep it rather than copy every pair (4D: kilobytes),
+  // which the keys tell without reading the pairs.
+  const auto key = [](std::uint32_t a, std::uint32_t b) { return std::uint64_t{a} << 32 | b; };
   const auto unchanged = [&] {
     std::size_t k = 0;
     for (const auto& [a, b] : s.candidate_pairs) {
       if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
-      if (k == s.pairs.size() || s.pairs[k].a != a || s.pairs[k].b != b) return false;
+      if (k == s.pair_keys.size() || s.pair_keys[k] != key(a, b)) return false;
       ++k;
     }
-    return k == s.pairs.size();
+    return k == s.pair_keys.size();
   };
   if (unchanged()) return;
   s.next_pairs.clear();
@@ -115,6 +117,8 @@ void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   }
   for (; old < s.pairs.size(); ++old) drop(s.pairs[old]);
   s.pairs.swap(s.next_pairs);
+  s.pair_keys.resize(s.pairs.size());
+  for (std::size_t k = 0; k < s.pairs.size(); ++k) s.pair_keys[k] = key(s.pairs[k].a, s.pairs[k].b);
 }
 
 // An upper bound of how fast any point of the body moves (m/s): centre speed plus |w| times the radius
@@ -163,13 +167,13 @@ template <int N>
 template <int N>
 void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                   const ContactSettings& settings, double h) {
-  for (Pair<N>& p : s.pairs) p.updated = false;
   auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
-  for (bool again = true; again;) {
+  for (bool again = true, first = true; again; first = false) {
     again = false;
     s.narrow_list.clear();
     for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
-      const Pair<N>& p = s.pairs[pi];
+      Pair<N>& p = s.pairs[pi];
+      if (first) p.updated = false;  // (in the same sweep: the pairs are kilobytes)
       const Body<N>& a = bodies[p.a];
       const Body<N>& b = bodies[p.b];
       if (!p.updated && (active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
@@ -213,6 +217,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     sb.vp.setZero();
     sb.wp = Bivector<N>{};
     sb.frozen = soft && !moves(s, bodies, i);
+    sb.advances = b.type != BodyType::Static && s.awake[i];
     if (moves(s, bodies, i)) {
       sb.inv_mass = b.inv_mass;
       sb.isotropic = linalg::is_isotropic(b.inv_inertia);

@@ -102,7 +102,9 @@ template <int N>
 Rotor<N> exp(const Bivector<N>& b) {
   using ga::detail::sinc;
   if constexpr (N <= 3) {  // every bivector is simple: B^2 = -|B|^2
-    const double t = b.norm();
+    // (In 2D |B| = |b12|, which is what sqrt(b12^2) rounds to; where b12^2 underflows, both are below
+    // 2^-27 and give the same rotor.)
+    const double t = N == 2 ? std::abs(b.c[0]) : b.norm();
     return Rotor<N>::from_parts(ga::detail::cos_near_zero(t), b * sinc(t));
   } else if constexpr (N == 4) {
     // B = S + A with S I = S, A I = -A (I = e0123): S and A commute, S A = 0, and
