@@ -24,7 +24,12 @@ struct Material {
   double friction = 0.5;          // static (Coulomb) coefficient, >= 0: sticks while |j_t| <= mu_s j_n
   double kinetic_friction = 0.4;  // >= 0: sliding friction |j_t| = mu_k j_n
 };
-inline double mix_friction(double a, double b) { return std::sqrt(a * b); }
+// (Equal coefficients, the usual case, give the coefficient itself: sqrt(a a) rounds to a wherever a a
+// neither underflows nor overflows, so the square root is skipped there, to the bit.)
+inline double mix_friction(double a, double b) {
+  if (a == b && a > 0x1p-500 && a < 0x1p500) return a;
+  return std::sqrt(a * b);
+}
 inline double mix_restitution(double a, double b) { return std::max(a, b); }
 
 // Which contact solver World::step runs.

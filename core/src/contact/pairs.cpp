@@ -454,7 +454,11 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     if (index >= 0)
       s.constraints[index] = make_constraint(s, materials, s.constraint_pairs[index], s.constraints[index].first);
   }
-  clear_slots(s, w);
+  // (Every field of an occupied lane is written below, so the slots are cleared first only where a
+  // lane is empty: the last wide constraint of a colour, and the uncoloured group's.)
+  bool full = true;
+  for (int l = 0; l < kLanes<N>; ++l) full = full && w.constraint[l] >= 0;
+  if (!full) clear_slots(s, w);
   fill_wide_header(s, w);
   const bool inertia = w.inertia >= 0;
   static const LanePoint<N> none{};
@@ -605,19 +609,20 @@ void report_events(ContactState<N>& s) {
   s.end_events = s.ended;
   for (Pair<N>& p : s.pairs) {
     if (!p.updated) continue;
-    double total = 0.0, approach = 0.0;
-    Vec<N> weighted = Vec<N>::Zero();
-    if (p.constraint >= 0) {  // (its points' totals are in normal_impulse: unpack_wide, keep_totals)
-      for (int k = 0; k < p.manifold.count; ++k) {
-        total += p.normal_impulse[k];
-        weighted += p.normal_impulse[k] * p.manifold.points[k].point;
-      }
-      approach = p.approach_speed;
-    } else {
-      p.normal_impulse.fill(0.0);
-    }
-    const bool touching = total > 0.0 || (p.manifold.count > 0 && p.manifold.depth > 0.0);
+    // A penetrating pair touches whatever its impulses: those are read only where they decide, or
+    // for a begin event (most resting pairs penetrate a little; the impulses are a cache line more).
+    const bool penetrating = p.manifold.count > 0 && p.manifold.depth > 0.0;
+    if (p.constraint < 0) p.normal_impulse.fill(0.0);
+    if (penetrating && p.touching) continue;  // (touching, and it was: no event)
+    double total = 0.0;  // (its points' totals are in normal_impulse: unpack_wide, keep_totals)
+    if (p.constraint >= 0)
+      for (int k = 0; k < p.manifold.count; ++k) total += p.normal_impulse[k];
+    const bool touching = total > 0.0 || penetrating;
     if (touching && !p.touching) {
+      Vec<N> weighted = Vec<N>::Zero();
+      if (p.constraint >= 0)
+        for (int k = 0; k < p.manifold.count; ++k) weighted += p.normal_impulse[k] * p.manifold.points[k].point;
+      const double approach = p.constraint >= 0 ? p.approach_speed : 0.0;
       ContactBeginEvent<N> e;
       e.a = BodyId{p.a};
       e.b = BodyId{p.b};
