@@ -159,6 +159,16 @@ template <int N>
   p.updated = true;
 }
 
+// A pair's every cache line, requested ahead of its use: the narrow phase reads all of each pair (its
+// manifold, and the recycling's state at the end), in pair order but past the hardware prefetcher's
+// reach (a 2D pair is nine lines, of which it reads five or six).
+constexpr int kPrefetchAhead = 4;
+template <int N>
+void prefetch_pair(const Pair<N>& p) {
+  const char* bytes = reinterpret_cast<const char*>(&p);
+  for (std::size_t at = 0; at < sizeof(Pair<N>); at += 64) __builtin_prefetch(bytes + at);
+}
+
 // Collides every pair with an awake dynamic body (or a moving kinematic one against a dynamic body).
 // Each pair's margin is the speculative contact_margin plus how far the two can close in one step, so a
 // contact that will close during the step is seen now (Guendelman's predicted positions, to first
@@ -185,6 +195,7 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
     s.narrow_wakes.resize(s.narrow_list.size());
     s.workers.for_ranges(int(s.narrow_list.size()), kConstraintGrain, [&](int begin, int end) {
       for (int k = begin; k < end; ++k) {
+        if (k + kPrefetchAhead < end) prefetch_pair(s.pairs[s.narrow_list[k + kPrefetchAhead]]);
         Pair<N>& p = s.pairs[s.narrow_list[k]];
         collide_pair(s, p, bodies, shapes, settings, h);
         const auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.awake[i]; };
