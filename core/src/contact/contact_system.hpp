@@ -259,11 +259,12 @@ struct ContactState {
   std::vector<Constraint<N>> constraints;    // in pair order (the paper's solver) or colour order (soft step)
   std::vector<int> constraint_pairs;         // the pairs that make them, in that order
   std::vector<std::uint32_t> colour_mask;    // per body: the colours its constraints took this step
-  std::vector<int> colour_of, colour_order;  // colouring scratch
+  std::vector<int> colour_of, colour_order;  // colouring scratch (colour_order: the seeds in colour order)
   // Per constraint-to-be, in pair order: what colouring and placing its points need of its pair, read in
   // the one sweep over the pairs that finds them (the pairs are large, and read in colour order each
   // of their lines is a cache miss).
   struct Seed {
+    int pair = 0;
     std::uint32_t a = 0, b = 0;
     int count = 0;
     bool move_a = false, move_b = false;

@@ -178,6 +178,7 @@ template <int N>
 void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                   const ContactSettings& settings, double h) {
   auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
+  auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.awake[i]; };
   for (bool again = true, first = true; again; first = false) {
     again = false;
     s.narrow_list.clear();
@@ -198,7 +199,6 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
         if (k + kPrefetchAhead < end) prefetch_pair(s.pairs[s.narrow_list[k + kPrefetchAhead]]);
         Pair<N>& p = s.pairs[s.narrow_list[k]];
         collide_pair(s, p, bodies, shapes, settings, h);
-        const auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.awake[i]; };
         s.narrow_wakes[k] = p.manifold.count > 0 && (sleeps(p.a) || sleeps(p.b));
       }
     });
@@ -206,7 +206,7 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
       if (!s.narrow_wakes[k]) continue;
       const Pair<N>& p = s.pairs[s.narrow_list[k]];
       for (const std::uint32_t i : {p.a, p.b})
-        if (bodies[i].is_dynamic() && !s.awake[i]) {
+        if (sleeps(i)) {  // (unless a pair before it woke it)
           s.wake_island(int(i));
           again = true;
         }
@@ -303,7 +303,7 @@ void colour_constraints(ContactState<N>& s, std::size_t bodies) {
   }
   for (int c = 2; c < kColours + 3; ++c) start[c] += start[c - 1];  // start[c + 1]: where colour c begins
   s.colour_start.assign(start.begin() + 1, start.end());
-  s.colour_order.resize(s.seeds.size());
+  s.colour_order.resize(s.seeds.size());  // (of the seeds)
   for (std::size_t k = 0; k < s.seeds.size(); ++k) s.colour_order[start[s.colour_of[k] + 1]++] = int(k);
 }
 
@@ -514,7 +514,6 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   const bool soft = settings.solver == ContactSolver::SoftStep;
   // (The last step's masses are kept for the recycled pairs; the build writes every one it uses.)
   if (soft) s.point_masses.swap(s.previous_masses);
-  s.constraint_pairs.clear();
   s.seeds.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
@@ -529,8 +528,7 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     p.normal_impulse.fill(0.0);
     const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
     if (!da && !db) continue;
-    s.constraint_pairs.push_back(int(pi));
-    s.seeds.push_back({p.a, p.b, p.manifold.count, da, db});
+    s.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db});
   }
   s.colour_start.clear();
   // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
@@ -540,12 +538,11 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   if (soft) colour_constraints(s, bodies.size());
   const std::size_t count = s.seeds.size();
   s.constraints.resize(count);
-  if (soft) s.colour_order.swap(s.constraint_pairs);  // (the scratch takes the pair-order list)
+  s.constraint_pairs.resize(count);
   int total = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const int seed = soft ? s.constraint_pairs[k] : int(k);
-    const auto& e = s.seeds[seed];
-    if (soft) s.constraint_pairs[k] = s.colour_order[seed];
+    const auto& e = s.seeds[soft ? std::size_t(s.colour_order[k]) : k];
+    s.constraint_pairs[k] = e.pair;
     Constraint<N>& c = s.constraints[k];
     c.first = total;
     c.count = e.count;
