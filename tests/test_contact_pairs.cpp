@@ -365,3 +365,19 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
   CHECK(sliding > 0);
   CHECK((inertias > 0) == (N > 2));
 }
+
+TEST_CASE("equal friction coefficients mix to themselves, as sqrt(a a) does, to the bit", "[contact]") {
+  // Oracle: the geometric mean from the library's sqrt, on log-spaced coefficients from 1e-150 to 1e150
+  // (inside the shortcut's range, 2^-500 to 2^500, everyday values included) and on unequal pairs,
+  // which take the square root as before.
+  int equal = 0;
+  for (double a = 1e-150; a < 1e150; a *= 1.37) {
+    INFO("a = " << a);
+    CHECK(mix_friction(a, a) == std::sqrt(a * a));
+    CHECK(mix_friction(a, 0.6) == std::sqrt(a * 0.6));
+    ++equal;
+  }
+  CHECK(mix_friction(0.0, 0.0) == 0.0);
+  CHECK(mix_friction(0.6, 0.6) == 0.6);
+  CHECK(equal > 2000);
+}

@@ -183,3 +183,21 @@ TEST_CASE("cos_near_zero's series gives the library's cos to the bit on 2 millio
   CHECK(tested > 1900000);
   CHECK(differ == 0);
 }
+
+TEST_CASE("2D exp takes |b12| for the norm: the same rotor as sqrt(b12^2), to the bit", "[ga][exp]") {
+  // Oracle: the general form, with the bivector's norm from the library's sqrt. |x| and sqrt(x x) are
+  // the same double wherever x x does not underflow; where it does (|x| < 1e-154) both angles are below
+  // 2^-27 and give the rotor (1, x). Log-spaced from 1e-200 to 10 rad, both signs, and 0.
+  std::vector<double> xs{0.0};
+  for (double x = 1e-200; x < 10.0; x *= 1.0 + 1.0 / 16.0) xs.insert(xs.end(), {x, -x});
+  for (const double x : xs) {
+    INFO("b12 = " << x);
+    Bivector<2> b;
+    b.c[0] = x;
+    const double t = std::sqrt(b.c.squaredNorm());
+    const Rotor<2> expected = Rotor<2>::from_parts(ga::detail::cos_near_zero(t), b * ga::detail::sinc(t));
+    const Rotor<2> r = exp<2>(b);
+    CHECK(r[0] == expected[0]);
+    CHECK(r[1] == expected[1]);
+  }
+}
