@@ -263,13 +263,17 @@ struct ContactState {
   // Per constraint-to-be, in pair order: what colouring and placing its points need of its pair, read in
   // the one sweep over the pairs that finds them (the pairs are large, and read in colour order each
   // of their lines is a cache miss).
+  // Colouring and the lanes are a function of the seeds alone (with which moving bodies are isotropic),
+  // so a step whose seeds are the last step's keeps the last step's colours and lanes (graph_kept).
   struct Seed {
     int pair = 0;
     std::uint32_t a = 0, b = 0;
     int count = 0;
     bool move_a = false, move_b = false;
+    bool iso_a = true, iso_b = true;  // the body is isotropic, or does not move
   };
-  std::vector<Seed> seeds;
+  std::vector<Seed> seeds, previous_seeds;
+  bool graph_kept = false;  // this step's constraints, colours and lanes are placed as the last step's
   // Soft step: where each colour's constraints begin, the uncoloured group's last, then the end (empty
   // for the paper's solver, whose constraints are in pair order).
   std::vector<int> colour_start;

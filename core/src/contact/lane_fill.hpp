@@ -108,31 +108,44 @@ void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// Lane l of slot k (0-based within w) from a point of the lane's constraint, with normal `normal`: x for
-// all but the masses, m for those; dn_a and dn_b (I^-1 jn) only where the wide constraint keeps them
-// (w.inertia >= 0). A constraint with fewer points than the slots puts a zero point (LanePoint{}) in
-// the slots past its last: in 2D its friction fields are then t . 0, as the point's own would be.
+// Lane l of slot k (0-based within w) from a point of the lane's constraint, with normal `normal`, in
+// two parts. put_lane_state writes what changes from step to step: separations, approach, friction and
+// the warm start. put_lane_masses writes what the masses give: from m, and dn_a and dn_b (I^-1 jn) only
+// where the wide constraint keeps them (w.inertia >= 0); in 2D jt from x's lever arms, else the arms.
+// A lane kept from the last step (pairs.cpp, build_wide) takes the first alone. A constraint with fewer
+// points than the slots puts a zero point (LanePoint{}) in the slots past its last: in 2D its friction
+// fields are then t . 0, as the point's own would be.
 template <int N>
-[[gnu::always_inline]] inline void put_lane_point(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
-                                                  const Vec<N>& normal, const LanePoint<N>& x,
-                                                  const PointMasses<N>& m, const typename PointMasses<N>::Biv& dn_a,
-                                                  const typename PointMasses<N>::Biv& dn_b) {
-  constexpr int K = kBiv<N>;
+[[gnu::always_inline]] inline void put_lane_state(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
+                                                  const Vec<N>& normal, const LanePoint<N>& x) {
   WidePoint<N>& q = s.wide_points[w.first + k];
   WidePointCold<N>& cold = s.wide_cold[w.first + k];
   s.wide_approach[w.first + k].set(l, x.approach);
   q.separation.set(l, x.separation);
   cold.base_separation.set(l, x.base_separation);
-  q.normal_mass.set(l, m.normal_mass);
   q.normal_impulse.set(l, x.normal_impulse);
   q.normal_total.set(l, x.normal_total);
   q.friction.set(l, x.friction);
   cold.sliding.set(l, x.sliding ? 1.0 : 0.0);
+  for (int i = 0; i < N; ++i) cold.slip_direction[i].set(l, x.slip_direction[i]);
+  if constexpr (N == 2) {  // friction along t alone (wide.hpp)
+    q.tangent_impulse.set(l, x.tangent_impulse.dot(tangent_2d(normal)));
+  } else {
+    for (int i = 0; i < N; ++i) q.tangent_impulse[i].set(l, x.tangent_impulse[i]);
+  }
+}
+template <int N>
+[[gnu::always_inline]] inline void put_lane_masses(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
+                                                   const Vec<N>& normal, const LanePoint<N>& x,
+                                                   const PointMasses<N>& m, const typename PointMasses<N>::Biv& dn_a,
+                                                   const typename PointMasses<N>::Biv& dn_b) {
+  constexpr int K = kBiv<N>;
+  WidePoint<N>& q = s.wide_points[w.first + k];
+  q.normal_mass.set(l, m.normal_mass);
   for (int i = 0; i < K; ++i) {
     q.jn_a[i].set(l, m.jn_a[i]);
     q.jn_b[i].set(l, m.jn_b[i]);
   }
-  for (int i = 0; i < N; ++i) cold.slip_direction[i].set(l, x.slip_direction[i]);
   if (w.inertia >= 0) {
     WideInertia<N>& in = s.wide_inertia[w.inertia];
     for (int i = 0; i < K; ++i) {
@@ -140,20 +153,25 @@ template <int N>
       in.dn_b[k][i].set(l, dn_b[i]);
     }
   }
-  if constexpr (N == 2) {  // friction along t alone (wide.hpp)
-    const Vec<2> t = tangent_2d(normal);
-    q.tangent_impulse.set(l, x.tangent_impulse.dot(t));
+  if constexpr (N == 2) {
     q.tangent_mass.set(l, m.tangent_mass);
     q.jt_a.set(l, normal.dot(x.ra));
     q.jt_b.set(l, normal.dot(x.rb));
   } else {
     for (int i = 0; i < N; ++i) {
-      q.tangent_impulse[i].set(l, x.tangent_impulse[i]);
       q.ra[i].set(l, x.ra[i]);
       q.rb[i].set(l, x.rb[i]);
     }
     for (int i = 0; i < N * N; ++i) q.tangent_mass[i].set(l, m.tangent_mass.data()[i]);
   }
+}
+template <int N>
+[[gnu::always_inline]] inline void put_lane_point(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
+                                                  const Vec<N>& normal, const LanePoint<N>& x,
+                                                  const PointMasses<N>& m, const typename PointMasses<N>::Biv& dn_a,
+                                                  const typename PointMasses<N>::Biv& dn_b) {
+  put_lane_state(s, w, k, l, normal, x);
+  put_lane_masses(s, w, k, l, normal, x, m, dn_a, dn_b);
 }
 
 // A point at the start of the soft step: the separation to follow through the sub-steps, and the

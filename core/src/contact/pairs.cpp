@@ -3,7 +3,9 @@
 // the contact events after the step.
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include <Eigen/LU>
 
@@ -252,6 +254,15 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
 template <int N>
 void warm_matches(const Pair<N>& p, const Vec<N>& centre_a, double distance,
                   std::array<int, kMaxManifoldPoints<N>>& match) {
+  // (The usual case first, the last step's ids in the same order, as a recycled manifold keeps them:
+  // each point continues its own, which is what the search below finds for them.)
+  int same = 0;
+  if (p.warm_count == p.manifold.count)
+    while (same < p.manifold.count && p.warm_id[same] == p.manifold.points[same].id) ++same;
+  if (same == p.manifold.count && same == p.warm_count) {
+    for (int k = 0; k < same; ++k) match[k] = k;
+    return;
+  }
   std::uint64_t taken = 0;  // bit w: old point w is continued (kMaxManifoldPoints <= 32)
   for (int k = 0; k < p.manifold.count; ++k) {
     match[k] = -1;
@@ -456,6 +467,10 @@ PointMasses<N> form_point_masses(const SolverBody<N>& a, const SolverBody<N>& b,
 // into its lane (no PointConstraint is kept: writing 272 bytes a 2D point and reading them back to pack
 // the lanes, and reading the last step's for the recycled masses, was most of the build). A recycled
 // pair's masses come from the last step's point_masses, and this step's are kept there.
+// Where the graph is kept (ContactState::graph_kept) each lane of a full wide constraint holds the same
+// pair as in the last step, and a recycled pair's lane already holds its masses, Jacobian rows and
+// normal (nothing in the sub-steps writes them): only what changes from step to step is written, and
+// the header only where some lane's masses changed. (Half of a resting pyramid's build.)
 template <int N>
 void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                 const ContactSettings& settings, WideConstraint<N>& w) {
@@ -470,7 +485,20 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   bool full = true;
   for (int l = 0; l < kLanes<N>; ++l) full = full && w.constraint[l] >= 0;
   if (!full) clear_slots(s, w);
-  fill_wide_header(s, w);
+  // The last step's masses: where this step's go when the graph is kept (the same places), else the
+  // other buffer (build_constraints).
+  const std::vector<PointMasses<N>>& previous = s.graph_kept ? s.point_masses : s.previous_masses;
+  const PointMasses<N>* last[kLanes<N>];
+  bool header_kept = s.graph_kept && full && w.inertia < 0;
+  for (int l = 0; l < kLanes<N>; ++l) {
+    last[l] = nullptr;
+    if (w.constraint[l] < 0) continue;
+    const Constraint<N>& c = s.constraints[w.constraint[l]];
+    const Pair<N>& p = s.pairs[c.pair];
+    if (masses_recycled(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b])) last[l] = &previous[p.previous_first];
+    header_kept = header_kept && last[l];
+  }
+  if (!header_kept) fill_wide_header(s, w);
   const bool inertia = w.inertia >= 0;
   static const LanePoint<N> none{};
   for (int l = 0; l < kLanes<N>; ++l) {
@@ -481,19 +509,21 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     const SolverBody<N>& sb = s.solver_bodies[c.b];
     std::array<int, kMaxManifoldPoints<N>> match;
     warm_matches(p, bodies[c.a].center, settings.contact_margin, match);
-    const PointMasses<N>* last = masses_recycled(s, p, sa, sb) ? &s.previous_masses[p.previous_first] : nullptr;
+    const bool lane_kept = s.graph_kept && full && !inertia && last[l];
     double approach_speed = 0.0;
     for (int k = 0; k < c.count; ++k) {
       const PointStart<N> x = make_point(s, p, c, k, match[k], settings.static_slip_speed);
       approach_speed = std::max(approach_speed, -x.approach);
-      PointMasses<N>& m = s.point_masses[c.first + k];
-      m = last ? last[k] : form_point_masses(sa, sb, x.ra, x.rb, c.normal);
       LanePoint<N> q;
       copy_point_start(q, x);
       prepare_point(q, c.normal, x.gap, settings.warm_start, x.warm_normal, x.warm_tangent);
+      put_lane_state(s, w, k, l, c.normal, q);
+      if (lane_kept) continue;  // (its masses are in point_masses and in the lane)
+      PointMasses<N>& m = s.point_masses[c.first + k];
+      m = last[l] ? last[l][k] : form_point_masses(sa, sb, x.ra, x.rb, c.normal);
       const Biv dn_a = inertia ? Biv(inverse_inertia_times(sa, m.jn_a)) : Biv::Zero();
       const Biv dn_b = inertia ? Biv(inverse_inertia_times(sb, m.jn_b)) : Biv::Zero();
-      put_lane_point(s, w, k, l, c.normal, q, m, dn_a, dn_b);
+      put_lane_masses(s, w, k, l, c.normal, q, m, dn_a, dn_b);
     }
     // (Past its last point, zero points, as fill_wide's: in 2D their friction fields are t . 0.)
     if (c.count < w.count) {
@@ -506,36 +536,14 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   }
 }
 
-// One constraint per pair with contact points and an awake dynamic body. For the soft step, in colour
-// order and built wide constraint by wide constraint, straight into the lanes (build_wide).
+// Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
+// colour order (soft step) or pair order, from the seeds, and for the soft step the lanes. (Not
+// cleared first: the build writes each constraint whole, and value-initialising them all was a tenth
+// of the build's time.)
 template <int N>
-void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
-                       const ContactSettings& settings) {
-  const bool soft = settings.solver == ContactSolver::SoftStep;
-  // (The last step's masses are kept for the recycled pairs; the build writes every one it uses.)
-  if (soft) s.point_masses.swap(s.previous_masses);
-  s.seeds.clear();
-  for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
-    Pair<N>& p = s.pairs[pi];
-    p.constraint = -1;
-    p.previous_first = p.points_first;
-    p.points_first = -1;
-    if (!p.updated) continue;
-    if (p.manifold.count == 0) {
-      p.warm_count = 0;
-      continue;
-    }
-    p.normal_impulse.fill(0.0);
-    const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
-    if (!da && !db) continue;
-    s.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db});
-  }
+void place_constraints(ContactState<N>& s, std::size_t bodies, bool soft) {
   s.colour_start.clear();
-  // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
-  // colour order (soft step) or pair order, from the seeds; then every constraint on its own (split
-  // over the workers). (Not cleared first: the build writes each constraint whole, and
-  // value-initialising them all was a tenth of this function's time.)
-  if (soft) colour_constraints(s, bodies.size());
+  if (soft) colour_constraints(s, bodies);
   const std::size_t count = s.seeds.size();
   s.constraints.resize(count);
   s.constraint_pairs.resize(count);
@@ -553,11 +561,49 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   if (soft) {
     s.point_masses.resize(total);
     assign_lanes(s);
+  } else {
+    s.points.resize(total);
+  }
+}
+
+// One constraint per pair with contact points and an awake dynamic body. For the soft step, in colour
+// order and built wide constraint by wide constraint, straight into the lanes (build_wide).
+template <int N>
+void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
+                       const ContactSettings& settings) {
+  const bool soft = settings.solver == ContactSolver::SoftStep;
+  s.seeds.swap(s.previous_seeds);
+  s.seeds.clear();
+  for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
+    Pair<N>& p = s.pairs[pi];
+    p.constraint = -1;
+    p.previous_first = p.points_first;
+    p.points_first = -1;
+    if (!p.updated) continue;
+    if (p.manifold.count == 0) {
+      p.warm_count = 0;
+      continue;
+    }
+    p.normal_impulse.fill(0.0);
+    const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
+    if (!da && !db) continue;
+    s.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db, !da || s.solver_bodies[p.a].isotropic,
+                       !db || s.solver_bodies[p.b].isotropic});
+  }
+  // The same seeds as the last soft step's: the same colours and lanes, and the constraints' places.
+  static_assert(std::has_unique_object_representations_v<typename ContactState<N>::Seed>);  // (memcmp is ==)
+  s.graph_kept = soft && s.built_soft && s.seeds.size() == s.previous_seeds.size() &&
+                 (s.seeds.empty() ||
+                  std::memcmp(s.seeds.data(), s.previous_seeds.data(), s.seeds.size() * sizeof(s.seeds[0])) == 0);
+  // (The last step's masses are kept for the recycled pairs; the build writes every one it uses. With
+  // the graph kept they stay where they are: each constraint's points are where they were.)
+  if (soft && !s.graph_kept) s.point_masses.swap(s.previous_masses);
+  if (!s.graph_kept) place_constraints(s, bodies.size(), soft);
+  if (soft) {
     s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
       for (int i = begin; i < end; ++i) build_wide(s, bodies, materials, settings, s.wide[i]);
     });
   } else {
-    s.points.resize(total);
     s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int k0, int k1) {
       for (int k = k0; k < k1; ++k)
         build_constraint(s, bodies, materials, settings.static_slip_speed, settings.contact_margin,
