@@ -266,7 +266,8 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
 // from the bodies' velocities), prepared (prepare_points) and packed by fill_wide, the reference
 // packing; the lanes must be those bytes exactly, header, slots, inertias and approach speeds. Three
 // rounds with nudges below the recycling limits and a sub-step's passes between them, so the recycled
-// pairs' copied masses are checked too, and the lanes kept from the round before (graph_kept).
+// pairs' copied masses are checked too, and the lanes kept from the round before (graph_kept); the last
+// round collides every pair afresh under the kept graph.
 // The scene fills lanes unevenly: a row of cubes on the ground, a stack, a cuboid (not isotropic from
 // 3D on: wide inertias) and a cube on an edge (2^(N-2) points beside 2^(N-1)), all moving.
 // (Without warm start: the warm matching is the same code for both solvers.)
@@ -309,8 +310,21 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
   ContactSettings settings;
   settings.warm_start = false;
   int recycled = 0, inertias = 0, padded = 0, sliding = 0, kept = 0, kept_whole = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {  // (mixed materials: each pair mixes its own)
+    scene.materials[i].friction = 0.3 + 0.05 * double(i);
+    scene.materials[i].kinetic_friction = 0.25 + 0.04 * double(i);
+    scene.materials[i].restitution = 0.1 * double(i % 3);
+  }
   for (int round = 0; round < 3; ++round) {
     INFO("round " << round);
+    // (Round 2 collides every pair afresh, with the ground turned by 1e-5 rad: the graph is kept, the
+    // ground's normals are new, the masses are formed again.)
+    settings.recycle_distance = round == 2 ? 0.0 : ContactSettings{}.recycle_distance;
+    if (round == 2) {
+      Bivector<N> tilt{};
+      tilt.c[0] = 1e-5;
+      bodies[0].rotor = wedge::exp(tilt);
+    }
     contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
     REQUIRE(s.constraints.size() == 13);  // 12 on the ground, 1 in the stack
     contact::ContactState<N> ref = s;
@@ -318,6 +332,14 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
     for (const contact::Constraint<N>& c : ref.constraints) {
       const contact::Pair<N>& p = ref.pairs[c.pair];
       recycled += p.recycled;
+      // The constraint as its pair and its bodies' materials make it, kept from the last round or not.
+      const Material& ma = scene.materials[c.a];
+      const Material& mb = scene.materials[c.b];
+      CHECK((c.a == int(p.a) && c.b == int(p.b) && c.count == p.manifold.count));
+      CHECK(c.normal == p.manifold.normal);
+      CHECK(c.friction == mix_friction(ma.friction, mb.friction));
+      CHECK(c.kinetic_friction == std::min(mix_friction(ma.kinetic_friction, mb.kinetic_friction), c.friction));
+      CHECK(c.restitution == mix_restitution(ma.restitution, mb.restitution));
       const contact::SolverBody<N>& a = ref.solver_bodies[c.a];
       const contact::SolverBody<N>& b = ref.solver_bodies[c.b];
       REQUIRE(c.first == int(ref.points.size()));

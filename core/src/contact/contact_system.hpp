@@ -383,7 +383,9 @@ void cache_manifold(Pair<N>& pair, const Body<N>& a, const Body<N>& b, const Mat
 // pairs.cpp
 template <int N>
 void add_body(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index);
-// (profile, if given, takes the broad phase's, the narrow phase's and the constraints' times.)
+// (profile, if given, takes the broad phase's, the narrow phase's and the constraints' times.) A body's
+// material must stay the same from step to step, as World's do: a step that finds the last step's
+// constraints keeps their mixed friction and restitution (build_wide).
 template <int N>
 void find_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                    const std::vector<Material>& materials, const ContactSettings& settings, double h,

@@ -475,10 +475,16 @@ template <int N>
 void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                 const ContactSettings& settings, WideConstraint<N>& w) {
   using Biv = typename PointMasses<N>::Biv;
+  // (With the graph kept a constraint is the last step's pair, bodies and points, and its materials,
+  // which are fixed per body (World has no setter): only the normal of a pair collided afresh is new.)
   for (int l = 0; l < kLanes<N>; ++l) {
     const int index = w.constraint[l];
-    if (index >= 0)
-      s.constraints[index] = make_constraint(s, materials, s.constraint_pairs[index], s.constraints[index].first);
+    if (index < 0) continue;
+    Constraint<N>& c = s.constraints[index];
+    if (s.graph_kept)
+      c.normal = s.pairs[c.pair].manifold.normal;
+    else
+      c = make_constraint(s, materials, s.constraint_pairs[index], c.first);
   }
   // (Every field of an occupied lane is written below, so the slots are cleared first only where a
   // lane is empty: the last wide constraint of a colour, and the uncoloured group's.)
