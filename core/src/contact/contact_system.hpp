@@ -253,6 +253,10 @@ struct ContactState {
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
   std::vector<std::uint64_t> pair_keys;     // a << 32 | b of each pair, in order (merge_pairs' check)
   std::vector<int> narrow_list;             // the narrow phase's pairs of one round
+  // Per body, for the narrow phase: its transform and how fast any of its points moves (m/s), formed
+  // once per step instead of once per pair side (a pyramid's box has up to six pairs).
+  std::vector<Transform<N>> pose;
+  std::vector<double> speed;
   std::vector<unsigned char> narrow_wakes;  // per narrow_list entry: it touches a sleeping body
 
   std::vector<SolverBody<N>> solver_bodies;  // per body

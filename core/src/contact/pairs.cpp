@@ -140,12 +140,13 @@ template <int N>
                                    const Shapes<N>& shapes, const ContactSettings& settings, double h) {
   const Body<N>& a = bodies[p.a];
   const Body<N>& b = bodies[p.b];
-  const double reach = h * (speed_bound(s, a, int(p.a)) + speed_bound(s, b, int(p.b)));
+  const double reach = h * (s.speed[p.a] + s.speed[p.b]);
   CollisionSettings cs;
   cs.exact_separation = false;
   cs.face_preference = settings.face_preference;
   cs.contact_margin = settings.contact_margin + reach;
-  const Transform<N> ta = transform_of(a), tb = transform_of(b);
+  const Transform<N>& ta = s.pose[p.a];
+  const Transform<N>& tb = s.pose[p.b];
   // Recycled only between slow bodies (soft step): a fast one may meet new features within the step.
   const bool flat = settings.solver == ContactSolver::SoftStep && flat_faced(*shapes[p.a]) && flat_faced(*shapes[p.b]);
   // How far a point of a body that moves can be from its centre (0 for static bodies).
@@ -181,6 +182,13 @@ void narrow_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const 
                   const ContactSettings& settings, double h) {
   auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
   auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.awake[i]; };
+  // (Every body's: waking in a later round moves none.)
+  s.pose.resize(bodies.size());
+  s.speed.resize(bodies.size());
+  for_each_body(s, int(bodies.size()), [&](int i) {
+    s.pose[i] = transform_of(bodies[i]);
+    s.speed[i] = speed_bound(s, bodies[i], i);
+  });
   for (bool again = true, first = true; again; first = false) {
     again = false;
     s.narrow_list.clear();
