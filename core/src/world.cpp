@@ -391,6 +391,7 @@ void World<N>::soft_step(double h) {
   for (int i = 0; i < c.substeps; ++i) {
     for (const int b : contact_->integrate_apart) {
       contact::SolverBody<N>& sb = contact_->solver_bodies[b];
+      if (contact_->pass_change_pending) contact::add_pass_change(sb);  // (before the velocities move on)
       integrate_velocity(bodies_[b], hs, sb.v, sb.w);
     }
     contact::solve_substep(*contact_, bodies_, c, hs, true);  // (the others' velocities first)
@@ -416,6 +417,7 @@ void World<N>::prepare_substep_velocities(double h) {
     const Body<N>& b = bodies_[i];
     contact::SolverBody<N>& sb = s.solver_bodies[i];
     sb.integrates = false;
+    sb.apart = contact::moves(s, bodies_, i) && velocity_needs_body(b);  // (as integrate_apart below)
     if (!contact::moves(s, bodies_, i) || velocity_needs_body(b)) return;
     sb.integrates = true;
     sb.dv = h * (settings_.gravity + b.force * b.inv_mass);

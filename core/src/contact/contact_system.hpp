@@ -94,6 +94,7 @@ struct alignas(64) SolverBody {
   bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
   bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else World does it)
   bool advances = false;    // not static and awake: the soft step's position update moves it
+  bool apart = false;       // soft step: moves, and World integrates its velocities itself (integrate_apart)
   // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
   // next sub-step (soft_step.cpp, warm_start_substep).
   Vec<N> warm_v = Vec<N>::Zero();
@@ -296,6 +297,9 @@ struct ContactState {
   Lanes lanes = default_lanes();  // the lane kernels' instruction set (the same bits either way)
   double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
   int substep = 0;  // soft step: the sub-steps begun in this step
+  // Soft step: the relax pass's velocity changes are still to join warm_v (add_pass_change), in the
+  // next sub-step's first sweep over the bodies (solve_substep), or in World's for the bodies apart.
+  bool pass_change_pending = false;
   std::vector<int> shock_order;  // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
 
@@ -423,6 +427,11 @@ void solve_substep(ContactState<N>& state, std::vector<Body<N>>& bodies, const C
                    double h, bool use_bias);
 template <int N>
 void track_substep_motion(ContactState<N>& state, const std::vector<Body<N>>& bodies);
+// The relax pass's velocity changes added to warm_v now, in a sweep of their own, for a caller that
+// changes the solver bodies' velocities between sub-steps itself (the tests; World adds those of the
+// bodies it integrates apart, and solve_substep the rest).
+template <int N>
+void flush_pass_change(ContactState<N>& state);
 // One body's part of it: how far it has moved (dp) and turned (dq = R R0^-1) since the step began, for
 // the relax pass's separations. World::integrate_positions calls it for each body it moves in the soft
 // step, in the same sweep (one more sweep over every body per sub-step cost 4-5% of a 2D pyramid's step).
@@ -434,6 +443,16 @@ inline void track_body_motion(SolverBody<N>& sb, const Body<N>& body) {
 // A body's velocity integration in a sub-step (World::integrate_velocities' arithmetic, from the step's
 // constants): the solve sub-step runs it in its first sweep over the bodies. Through the sub-steps the
 // velocities live in the solver bodies alone; finish_soft_step stores them to the bodies.
+// The soft step's warm start, body by body (soft_step.cpp, warm_start_substep): after a contact pass
+// that began with snapshot_velocities, what it changed of a body's velocities is added to warm_v and
+// warm_w (add_pass_change; the first sub-step's point-by-point warm start sets them, set_warm_start),
+// and the next sub-step adds them to the fresh velocities (add_warm_start). A frozen body takes none.
+template <int N>
+inline void add_pass_change(SolverBody<N>& b) {
+  if (b.frozen) return;
+  b.warm_v = b.warm_v + (b.v - b.v0);
+  b.warm_w = b.warm_w + (b.w - b.w0);
+}
 template <int N>
 inline void integrate_substep_velocity(SolverBody<N>& b) {
   if (!b.integrates) return;

@@ -85,16 +85,7 @@ void for_each_wide(ContactState<N>& s, const Kernel& kernel) {
   for_each_wide_run(s, [&](int begin, int end) { run_lanes(s, kernel, begin, end); });
 }
 
-// The soft step's warm start, body by body (warm_start_substep): after a contact pass that began with
-// snapshot_velocities, what it changed of a body's velocities is added to warm_v and warm_w
-// (add_pass_change; the first sub-step's point-by-point warm start sets them, set_warm_start), and the
-// next sub-step adds them to the fresh velocities (add_warm_start). A frozen body takes none.
-template <int N>
-inline void add_pass_change(SolverBody<N>& b) {
-  if (b.frozen) return;
-  b.warm_v = b.warm_v + (b.v - b.v0);
-  b.warm_w = b.warm_w + (b.w - b.w0);
-}
+// (add_pass_change: contact_system.hpp.)
 template <int N>
 inline void add_warm_start(SolverBody<N>& b) {
   if (b.frozen) return;
@@ -307,6 +298,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   s.soft_mass_scale = soft.mass_scale;
   s.soft_impulse_scale = soft.impulse_scale;
   s.substep = 0;
+  s.pass_change_pending = false;  // (the first sub-step's warm start sets warm_v afresh)
 }
 
 // A constraint's points at the start of the soft step (prepare_point).
@@ -318,21 +310,28 @@ void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start)
   }
 }
 
-// After a pass, in one sweep over the solver bodies: what it changed goes to the warm start
-// (add_pass_change), and, after the solve pass, v0 = v for the relax pass, which finds the velocities as
-// this pass left them (the position update moves only the bodies). Each of these was a sweep of its own,
-// eleven per sub-step with the tracking of the motion: together about a tenth of a 2D pyramid's step.
-// (The velocities stay here until the step ends: integrate_substep_velocity.)
+// After the solve pass, in one sweep over the solver bodies: what it changed goes to the warm start
+// (add_pass_change), and v0 = v for the relax pass, which finds the velocities as this pass left them
+// (the position update moves only the bodies). Each of these was a sweep of its own, eleven per sub-step
+// with the tracking of the motion: together about a tenth of a 2D pyramid's step. The relax pass's
+// changes join warm_v in the next sub-step's first sweep instead (pass_change_pending): the same
+// additions in the same order, one sweep fewer, and none after the last sub-step, whose warm_v is not
+// used. (The velocities stay here until the step ends: integrate_substep_velocity.)
 template <int N>
-void finish_pass(ContactState<N>& s, bool snapshot) {
+void finish_pass(ContactState<N>& s) {
   for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
     SolverBody<N>& b = s.solver_bodies[i];
     add_pass_change(b);
-    if (snapshot) {
-      b.v0 = b.v;
-      b.w0 = b.w;
-    }
+    b.v0 = b.v;
+    b.w0 = b.w;
   });
+}
+
+template <int N>
+void flush_pass_change(ContactState<N>& s) {
+  if (!s.pass_change_pending) return;
+  s.pass_change_pending = false;
+  for_each_body(s, int(s.solver_bodies.size()), [&](int i) { add_pass_change(s.solver_bodies[i]); });
 }
 
 template <int N>
@@ -343,8 +342,18 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
     grabs = prepare_grabs(s, bodies, h);
     // After the first sub-step, without grabs, the velocity update joins the warm start's sweep.
     const bool fused = !s.constraints.empty() && !grabs && s.substep > 0;
+    // (The last relax pass's changes join warm_v first, before the velocities move on: see
+    // finish_pass. World has added those of the bodies apart.)
+    const bool pending = s.pass_change_pending;
+    s.pass_change_pending = false;
+    const auto add_pending = [pending](SolverBody<N>& b) {
+      if (pending && !b.apart) add_pass_change(b);
+    };
     if (!fused)
-      for_each_body(s, int(s.solver_bodies.size()), [&](int i) { integrate_substep_velocity(s.solver_bodies[i]); });
+      for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
+        add_pending(s.solver_bodies[i]);
+        integrate_substep_velocity(s.solver_bodies[i]);
+      });
     if (s.constraints.empty() && !grabs) return;
     if (!fused) {
       if (grabs) warm_start_grabs(s);
@@ -356,6 +365,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
       // integrate_substep_velocity, warm_start_substep and snapshot_velocities in one sweep.
       for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
         SolverBody<N>& b = s.solver_bodies[i];
+        add_pending(b);
         integrate_substep_velocity(b);
         add_warm_start(b);
         b.v0 = b.v;
@@ -371,8 +381,12 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
     }  // (else v0 = v since the solve pass: finish_pass)
   }
   solve_contacts(s, settings, h, use_bias, use_bias && s.substep > 0);
-  finish_pass(s, use_bias);
-  if (use_bias) ++s.substep;
+  if (use_bias) {
+    finish_pass(s);
+    ++s.substep;
+  } else {
+    s.pass_change_pending = true;
+  }
 }
 
 // How far each body has moved (dp) and turned (dq) since the step began, for the relax pass's
@@ -437,6 +451,7 @@ Lanes default_lanes() {
   template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
+  template void flush_pass_change<N>(ContactState<N>&);                                                       \
   template void finish_soft_step<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&);       \
   template void assign_lanes<N>(ContactState<N>&);                                                           \
   template void fill_wide<N>(ContactState<N>&, WideConstraint<N>&);                                          \
