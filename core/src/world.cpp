@@ -492,8 +492,12 @@ void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
     // The soft step's sub-steps: the velocities are the solver bodies', there is no split impulse (vp
     // and wp are zero), and which bodies move is the solver body's flag: the body's own type and the
     // awake flags are a cache line more per body, eight times a step.
+    // The solve pass's finish, body by body, joins this sweep (contact::finish_pass).
+    const bool finish = contact_->solve_finish_pending;
+    contact_->solve_finish_pending = false;
     contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) __attribute__((flatten)) {
       contact::SolverBody<N>& sb = contact_->solver_bodies[i];
+      if (finish) contact::finish_body_pass(sb);
       if (!sb.advances) return;
       Body<N>& b = bodies_[i];
       b.center += h * (sb.v + sb.vp);  // (vp is +0; adding it keeps the general form's bits)

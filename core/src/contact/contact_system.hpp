@@ -300,6 +300,9 @@ struct ContactState {
   // Soft step: the relax pass's velocity changes are still to join warm_v (add_pass_change), in the
   // next sub-step's first sweep over the bodies (solve_substep), or in World's for the bodies apart.
   bool pass_change_pending = false;
+  // Soft step: the solve pass's finish (finish_pass: its changes to warm_v, then v0 = v) is still to be
+  // done, by World's position update as it moves each body, or by the relax pass first.
+  bool solve_finish_pending = false;
   std::vector<int> shock_order;  // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
 
@@ -452,6 +455,14 @@ inline void add_pass_change(SolverBody<N>& b) {
   if (b.frozen) return;
   b.warm_v = b.warm_v + (b.v - b.v0);
   b.warm_w = b.warm_w + (b.w - b.w0);
+}
+// One body's part of finish_pass (soft_step.cpp): the solve pass's changes to the warm start, then the
+// velocities as the relax pass will find them.
+template <int N>
+inline void finish_body_pass(SolverBody<N>& b) {
+  add_pass_change(b);
+  b.v0 = b.v;
+  b.w0 = b.w;
 }
 template <int N>
 inline void integrate_substep_velocity(SolverBody<N>& b) {

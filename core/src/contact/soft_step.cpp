@@ -299,6 +299,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   s.soft_impulse_scale = soft.impulse_scale;
   s.substep = 0;
   s.pass_change_pending = false;  // (the first sub-step's warm start sets warm_v afresh)
+  s.solve_finish_pending = false;
 }
 
 // A constraint's points at the start of the soft step (prepare_point).
@@ -316,15 +317,13 @@ void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start)
 // with the tracking of the motion: together about a tenth of a 2D pyramid's step. The relax pass's
 // changes join warm_v in the next sub-step's first sweep instead (pass_change_pending): the same
 // additions in the same order, one sweep fewer, and none after the last sub-step, whose warm_v is not
-// used. (The velocities stay here until the step ends: integrate_substep_velocity.)
+// used. World's position update does this sweep's work body by body as it moves them
+// (solve_finish_pending, finish_body_pass), one sweep fewer again; the relax pass does it first if
+// nothing has. (The velocities stay here until the step ends: integrate_substep_velocity.)
 template <int N>
 void finish_pass(ContactState<N>& s) {
-  for_each_body(s, int(s.solver_bodies.size()), [&](int i) {
-    SolverBody<N>& b = s.solver_bodies[i];
-    add_pass_change(b);
-    b.v0 = b.v;
-    b.w0 = b.w;
-  });
+  s.solve_finish_pending = false;
+  for_each_body(s, int(s.solver_bodies.size()), [&](int i) { finish_body_pass(s.solver_bodies[i]); });
 }
 
 template <int N>
@@ -373,6 +372,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
       });
     }
   } else {
+    if (s.solve_finish_pending) finish_pass(s);  // (World's position update does it as it moves the bodies)
     grabs = !s.driven.empty();
     if (s.constraints.empty() && !grabs) return;
     if (grabs) {
@@ -382,7 +382,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   }
   solve_contacts(s, settings, h, use_bias, use_bias && s.substep > 0);
   if (use_bias) {
-    finish_pass(s);
+    s.solve_finish_pending = true;
     ++s.substep;
   } else {
     s.pass_change_pending = true;
