@@ -309,3 +309,34 @@ TEST_CASE("broadphase: invalid settings, boxes and proxy ids are refused", "[bro
   REQUIRE_THROWS_AS(bp.user_id(p), wedge::Error);
   bp.validate();
 }
+
+TEST_CASE("broadphase: update_pairs does nothing when no proxy was created, re-inserted or destroyed",
+          "[broadphase]") {
+  BroadPhase<2> bp;
+  auto unit_at = [](double x) { return Aabb<2>{Vec<2>(x, 0), Vec<2>(x + 1, 1)}; };
+  const int a = bp.create_proxy(unit_at(0.0), 1);
+  const int b = bp.create_proxy(unit_at(1.05), 2);
+  bp.create_proxy(unit_at(2.12), 3);
+  CHECK(bp.update_pairs());
+  const Pairs expected{{1, 2}, {2, 3}};
+  CHECK(bp.pairs() == expected);
+  // A move inside the fat box re-inserts nothing: no query, the same list.
+  CHECK_FALSE(bp.move_proxy(a, unit_at(0.01), Vec<2>::Zero()));
+  CHECK_FALSE(bp.update_pairs());
+  CHECK(bp.queried_proxies() == 0);
+  CHECK(bp.pairs() == expected);
+  // Destroying a proxy that did not move changes the list: its pairs go.
+  bp.destroy_proxy(b);
+  CHECK(bp.update_pairs());
+  CHECK(bp.pairs().empty());
+  CHECK_FALSE(bp.update_pairs());
+  // A move out of the fat box re-inserts the proxy and finds its new pair.
+  CHECK(bp.move_proxy(a, unit_at(3.15), Vec<2>::Zero()));
+  CHECK(bp.update_pairs());
+  CHECK(bp.pairs() == Pairs{{1, 3}});
+  // The form that copies the list out agrees.
+  Pairs out{{7, 8}};
+  bp.update_pairs(out);
+  CHECK(out == Pairs{{1, 3}});
+  bp.validate();
+}

@@ -227,6 +227,7 @@ void BroadPhase<N>::destroy_proxy(int proxy) {
   remove_leaf(proxy);
   free_node(proxy);
   --proxy_count_;
+  destroyed_ = true;
 }
 
 template <int N>
@@ -260,9 +261,13 @@ const Aabb<N>& BroadPhase<N>::fat_box(int proxy) const {
 // ------------------------------------------------------------------ pairs
 
 template <int N>
-void BroadPhase<N>::update_pairs(std::vector<Pair>& out) {
+bool BroadPhase<N>::update_pairs() {
   node_overlap_tests_ = 0;
   queried_proxies_ = 0;
+  // (Unmoved proxies keep their pairs, below: with none moved the list stands, and the sweeps over it
+  // are skipped.)
+  if (move_buffer_.empty() && !destroyed_) return false;
+  destroyed_ = false;
   new_pairs_.clear();
   for (const int p : move_buffer_) {
     if (p == kNull) continue;
@@ -296,9 +301,11 @@ void BroadPhase<N>::update_pairs(std::vector<Pair>& out) {
     if (p != kNull) nodes_[p].move_slot = -1;
   move_buffer_.clear();
 
-  out.clear();
+  user_pairs_.clear();
   for (const ProxyPair& q : pairs_)
-    if (out.empty() || out.back() != Pair{q.user_a, q.user_b}) out.emplace_back(q.user_a, q.user_b);
+    if (user_pairs_.empty() || user_pairs_.back() != Pair{q.user_a, q.user_b})
+      user_pairs_.emplace_back(q.user_a, q.user_b);
+  return true;
 }
 
 // ------------------------------------------------------------------ checks

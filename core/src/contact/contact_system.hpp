@@ -83,6 +83,14 @@ struct alignas(64) Pair {
   }
 };
 
+// The cache lines of [from, to), requested ahead of their use: the soft step's build reads the pairs
+// and bodies in colour order, where each is a miss the hardware prefetcher cannot foresee.
+inline void prefetch_lines(const void* from, const void* to) {
+  const auto line = [](const void* p) { return reinterpret_cast<std::uintptr_t>(p) & ~std::uintptr_t{63}; };
+  for (std::uintptr_t at = line(from); at < reinterpret_cast<std::uintptr_t>(to); at += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(at));
+}
+
 // A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
 // What the soft step's sweeps over the bodies read comes first, in as few cache lines as it fits (a
 // tall pyramid's bodies do not fit the cache): the passes gather v and w, the sweeps between them
@@ -250,7 +258,9 @@ struct ContactState {
   std::vector<double> radius;             // per body: m, farthest point of its shape from the centre of mass
   std::vector<std::uint32_t> halfspaces;  // bodies whose shape is a half-space
   std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
-  std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, merged_pairs;  // scratch for the merge
+  // The half-space pairs of this step and of the last (when neither they nor the broad phase's
+  // changed, candidate_pairs stands).
+  std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, previous_halfspace_pairs;
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
   std::vector<std::uint64_t> pair_keys;     // a << 32 | b of each pair, in order (merge_pairs' check)
   std::vector<int> narrow_list;             // the narrow phase's pairs of one round

@@ -45,7 +45,8 @@ bool flat_faced(const Shape<N>& shape) {
 }
 
 // Moves the proxies of the bodies that can move, then lists the candidate pairs: the broad phase's,
-// plus each half-space with every dynamic body whose box reaches within the margin of its plane.
+// plus each half-space with every dynamic body whose box reaches within the margin of its plane. Where
+// neither changed (a resting scene) the list is left as it is.
 template <int N>
 void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, double h) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -54,9 +55,9 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     s.box[i] = world_aabb(*shapes[i], b.position(), b.rotor);
     s.broad_phase.move_proxy(s.proxy[i], s.box[i], Vec<N>(b.velocity * h));
   }
-  s.broad_phase.update_pairs(s.candidate_pairs);
-  if (s.halfspaces.empty()) return;
-  // The half-space pairs, sorted, merged into the broad phase's sorted list.
+  const bool tree_changed = s.broad_phase.update_pairs();
+  // The half-space pairs, sorted. (The box is read first: the body's type is a cache line more.)
+  s.halfspace_pairs.swap(s.previous_halfspace_pairs);
   s.halfspace_pairs.clear();
   const double margin = s.broad_phase.settings().margin;
   for (const std::uint32_t hs : s.halfspaces) {
@@ -65,20 +66,21 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     const Vec<N> n = rotate(g.rotor, plane.normal);
     const double offset = plane.offset + n.dot(g.position());
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      if (s.proxy[i] < 0 || !bodies[i].is_dynamic()) continue;
+      if (s.proxy[i] < 0) continue;
       const Aabb<N>& box = s.box[i];
       double low = 0.0;  // the box's lowest point along n
       for (int k = 0; k < N; ++k) low += n[k] * (n[k] > 0.0 ? box.lo[k] : box.hi[k]);
-      if (low <= offset + margin)
+      if (low <= offset + margin && bodies[i].is_dynamic())
         s.halfspace_pairs.emplace_back(std::min<std::uint32_t>(hs, std::uint32_t(i)),
                                        std::max<std::uint32_t>(hs, std::uint32_t(i)));
     }
   }
   std::sort(s.halfspace_pairs.begin(), s.halfspace_pairs.end());
-  s.merged_pairs.resize(s.candidate_pairs.size() + s.halfspace_pairs.size());
-  std::merge(s.candidate_pairs.begin(), s.candidate_pairs.end(), s.halfspace_pairs.begin(), s.halfspace_pairs.end(),
-             s.merged_pairs.begin());
-  s.candidate_pairs.swap(s.merged_pairs);
+  if (!tree_changed && s.halfspace_pairs == s.previous_halfspace_pairs) return;
+  // Merged into the broad phase's sorted list.
+  const auto& tree = s.broad_phase.pairs();
+  s.candidate_pairs.resize(tree.size() + s.halfspace_pairs.size());
+  std::merge(tree.begin(), tree.end(), s.halfspace_pairs.begin(), s.halfspace_pairs.end(), s.candidate_pairs.begin());
 }
 
 // The new pair list, carrying each surviving pair's manifold and touching state over; a pair that
@@ -550,6 +552,24 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   }
 }
 
+// What build_wide reads of w's pairs and bodies, requested a wide constraint ahead: it visits them in
+// colour order, where each is a miss the hardware prefetcher cannot foresee. (Its constraints' pairs
+// and bodies are known before the build: constraint_pairs, and place_constraints' a and b.)
+template <int N>
+void prefetch_build(const ContactState<N>& s, const std::vector<Body<N>>& bodies, const WideConstraint<N>& w) {
+  for (const int k : w.constraint) {
+    if (k < 0) continue;
+    const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
+    prefetch_lines(&p, &p.arm_b + 1);
+    for (const int i : {s.constraints[k].a, s.constraints[k].b}) {
+      const SolverBody<N>& b = s.solver_bodies[i];
+      prefetch_lines(&b.v, &b.w + 1);
+      prefetch_lines(&b.inv_mass, &b.inv_inertia + 1);
+      prefetch_lines(&bodies[i].center, &bodies[i].center + 1);
+    }
+  }
+}
+
 // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
 // colour order (soft step) or pair order, from the seeds, and for the soft step the lanes. (Not
 // cleared first: the build writes each constraint whole, and value-initialising them all was a tenth
@@ -615,7 +635,10 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   if (!s.graph_kept) place_constraints(s, bodies.size(), soft);
   if (soft) {
     s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-      for (int i = begin; i < end; ++i) build_wide(s, bodies, materials, settings, s.wide[i]);
+      for (int i = begin; i < end; ++i) {
+        if (i + 1 < end) prefetch_build(s, bodies, s.wide[i + 1]);
+        build_wide(s, bodies, materials, settings, s.wide[i]);
+      }
     });
   } else {
     s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int k0, int k1) {

@@ -121,42 +121,57 @@ void warm_start_substep(ContactState<N>& s) {
 
 // Restitution once the sub-steps are done: points that approached faster than the threshold when the
 // step began and took an impulse get the normal velocity -e u_n (Box2D v3's rule). The accumulated
-// impulses are the pair's (unpack_wide): warm_normal the last sub-step's, normal_impulse the step's.
-// The points are read from the lanes, in solver order and split over the workers (for_each_wide_run).
+// impulses are the pair's (unpack_lane): warm_normal the last sub-step's, normal_impulse the step's.
+// Lane l of wide constraint w; the lanes are visited in solver order (finish_soft_step).
 template <int N>
-void apply_restitution(ContactState<N>& s, const ContactSettings& settings) {
+void restitute_lane(ContactState<N>& s, const ContactSettings& settings, const WideConstraint<N>& w, int l) {
   using Biv = typename PointMasses<N>::Biv;
-  const auto lane = [&](const WideConstraint<N>& w, int l) {
-    const Constraint<N>& c = s.constraints[w.constraint[l]];
-    if (c.restitution <= 0.0) return;
-    SolverBody<N>& a = s.solver_bodies[c.a];
-    SolverBody<N>& b = s.solver_bodies[c.b];
-    Pair<N>& pair = s.pairs[c.pair];
-    for (int k = 0; k < c.count; ++k) {
-      const WidePoint<N>& q = s.wide_points[w.first + k];
-      const double approach = s.wide_approach[w.first + k][l];
-      double& impulse = pair.warm_normal[k];
-      double& total = pair.normal_impulse[k];
-      if (approach > -settings.restitution_threshold || total <= 0.0) continue;
-      Biv jn_a, jn_b;
-      for (int i = 0; i < kBiv<N>; ++i) {
-        jn_a[i] = q.jn_a[i][l];
-        jn_b[i] = q.jn_b[i][l];
-      }
-      const double un = c.normal.dot(b.v - a.v) + jn_b.dot(b.w.c) - jn_a.dot(a.w.c);
-      const double next = std::max(impulse - q.normal_mass[l] * (un + c.restitution * approach), 0.0);
-      const double change = next - impulse;
-      impulse = next;
-      total += change;
-      apply_normal_impulse(a, b, c.normal, change, Biv(inverse_inertia_times(a, jn_a)),
-                           Biv(inverse_inertia_times(b, jn_b)));
+  const Constraint<N>& c = s.constraints[w.constraint[l]];
+  if (c.restitution <= 0.0) return;
+  SolverBody<N>& a = s.solver_bodies[c.a];
+  SolverBody<N>& b = s.solver_bodies[c.b];
+  Pair<N>& pair = s.pairs[c.pair];
+  for (int k = 0; k < c.count; ++k) {
+    const WidePoint<N>& q = s.wide_points[w.first + k];
+    const double approach = s.wide_approach[w.first + k][l];
+    double& impulse = pair.warm_normal[k];
+    double& total = pair.normal_impulse[k];
+    if (approach > -settings.restitution_threshold || total <= 0.0) continue;
+    Biv jn_a, jn_b;
+    for (int i = 0; i < kBiv<N>; ++i) {
+      jn_a[i] = q.jn_a[i][l];
+      jn_b[i] = q.jn_b[i][l];
     }
-  };
-  for_each_wide_run(s, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i)
-      for (int l = 0; l < kLanes<N>; ++l)
-        if (s.wide[i].constraint[l] >= 0) lane(s.wide[i], l);
-  });
+    const double un = c.normal.dot(b.v - a.v) + jn_b.dot(b.w.c) - jn_a.dot(a.w.c);
+    const double next = std::max(impulse - q.normal_mass[l] * (un + c.restitution * approach), 0.0);
+    const double change = next - impulse;
+    impulse = next;
+    total += change;
+    apply_normal_impulse(a, b, c.normal, change, Biv(inverse_inertia_times(a, jn_a)),
+                         Biv(inverse_inertia_times(b, jn_b)));
+  }
+}
+
+// The lanes' accumulated impulses of lane l of w to its pair, where the events, restitution and the
+// next step's warm start read them (the soft step keeps no points; the paper's solver keeps its
+// impulses in its points, keep_for_warm_start and keep_totals).
+template <int N>
+void unpack_lane(ContactState<N>& s, const WideConstraint<N>& w, int l) {
+  const Constraint<N>& c = s.constraints[w.constraint[l]];
+  Pair<N>& pair = s.pairs[c.pair];
+  pair.warm_count = c.count;
+  for (int k = 0; k < c.count; ++k) {
+    const WidePoint<N>& q = s.wide_points[w.first + k];
+    pair.warm_id[k] = pair.manifold.points[k].id;
+    pair.warm_normal[k] = q.normal_impulse[l];
+    pair.normal_impulse[k] = q.normal_total[l];
+    pair.warm_arm[k] = pair.arm_a[k];  // (the points' and lanes' ra)
+    if constexpr (N == 2) {
+      pair.warm_tangent[k] = q.tangent_impulse[l] * tangent_2d(c.normal);
+    } else {
+      for (int j = 0; j < N; ++j) pair.warm_tangent[k][j] = q.tangent_impulse[j][l];
+    }
+  }
 }
 
 }  // namespace
@@ -188,33 +203,14 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// The lanes' accumulated impulses to the pairs, where the events, restitution and the next step's warm
-// start read them (the soft step keeps no points; the paper's solver keeps its impulses in its points,
-// keep_for_warm_start and keep_totals).
+// Every lane's accumulated impulses to its pair (unpack_lane), on their own: for the tests.
+// finish_soft_step unpacks each lane as it applies its restitution.
 template <int N>
 void unpack_wide(ContactState<N>& s) {
   s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) {
-      const WideConstraint<N>& w = s.wide[i];
-      for (int l = 0; l < kLanes<N>; ++l) {
-        if (w.constraint[l] < 0) continue;
-        const Constraint<N>& c = s.constraints[w.constraint[l]];
-        Pair<N>& pair = s.pairs[c.pair];
-        pair.warm_count = c.count;
-        for (int k = 0; k < c.count; ++k) {
-          const WidePoint<N>& q = s.wide_points[w.first + k];
-          pair.warm_id[k] = pair.manifold.points[k].id;
-          pair.warm_normal[k] = q.normal_impulse[l];
-          pair.normal_impulse[k] = q.normal_total[l];
-          pair.warm_arm[k] = pair.arm_a[k];  // (the points' and lanes' ra)
-          if constexpr (N == 2) {
-            pair.warm_tangent[k] = q.tangent_impulse[l] * tangent_2d(c.normal);
-          } else {
-            for (int j = 0; j < N; ++j) pair.warm_tangent[k][j] = q.tangent_impulse[j][l];
-          }
-        }
-      }
-    }
+    for (int i = begin; i < end; ++i)
+      for (int l = 0; l < kLanes<N>; ++l)
+        if (s.wide[i].constraint[l] >= 0) unpack_lane(s, s.wide[i], l);
   });
 }
 
@@ -402,10 +398,18 @@ void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies
 
 template <int N>
 void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings) {
-  if (!s.constraints.empty()) {
-    unpack_wide(s);
-    apply_restitution(s, settings);
-  }
+  // Each lane's impulses to its pair, then its restitution, in one sweep in solver order (a lane's
+  // restitution reads only its own pair, which its unpacking has written).
+  if (!s.constraints.empty())
+    for_each_wide_run(s, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) {
+        for (int l = 0; l < kLanes<N>; ++l)
+          if (s.wide[i].constraint[l] >= 0) {
+            unpack_lane(s, s.wide[i], l);
+            restitute_lane(s, settings, s.wide[i], l);
+          }
+      }
+    });
   store_velocities(s, bodies);
 }
 

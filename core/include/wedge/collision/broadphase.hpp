@@ -59,10 +59,18 @@ class BroadPhase {
   // than shrink_margins margins too large). Throws wedge::Error for an invalid id, box or displacement.
   bool move_proxy(int proxy, const Aabb<N>& box, const Vec<N>& displacement);
 
-  // Replaces `out` by every pair of distinct user ids that have proxies with overlapping fat boxes,
-  // each with first < second, sorted ascending, without duplicates. Only proxies created or
-  // re-inserted since the last call query the tree. Allocates nothing once its buffers have grown.
-  void update_pairs(std::vector<Pair>& out);
+  // Brings pairs() up to date: every pair of distinct user ids that have proxies with overlapping fat
+  // boxes, each with first < second, sorted ascending, without duplicates. Only proxies created or
+  // re-inserted since the last call query the tree. Returns false, having done nothing, when no proxy
+  // was created, re-inserted or destroyed since the last call (the list is the last one: a resting
+  // scene's step). Allocates nothing once its buffers have grown.
+  bool update_pairs();
+  const std::vector<Pair>& pairs() const { return user_pairs_; }
+  // update_pairs(), then `out` = pairs().
+  void update_pairs(std::vector<Pair>& out) {
+    update_pairs();
+    out = user_pairs_;
+  }
 
   // Calls callback(proxy) for every proxy whose fat box overlaps `box`, in an order fixed by the tree.
   // If the callback returns bool, false stops the query.
@@ -179,6 +187,8 @@ class BroadPhase {
   int proxy_count_ = 0;
   std::vector<int> move_buffer_;  // proxies created or re-inserted since update_pairs; kNull if destroyed
   std::vector<ProxyPair> pairs_;  // every overlapping proxy pair as of the last update_pairs, sorted
+  std::vector<Pair> user_pairs_;  // pairs_' user ids, without duplicates (pairs())
+  bool destroyed_ = false;        // a proxy was destroyed since update_pairs
   std::vector<ProxyPair> new_pairs_;
   std::vector<ProxyPair> merged_;
   struct Candidate {
