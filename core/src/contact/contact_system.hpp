@@ -83,14 +83,6 @@ struct alignas(64) Pair {
   }
 };
 
-// The cache lines of [from, to), requested ahead of their use: the soft step's build reads the pairs
-// and bodies in colour order, where each is a miss the hardware prefetcher cannot foresee.
-inline void prefetch_lines(const void* from, const void* to) {
-  const auto line = [](const void* p) { return reinterpret_cast<std::uintptr_t>(p) & ~std::uintptr_t{63}; };
-  for (std::uintptr_t at = line(from); at < reinterpret_cast<std::uintptr_t>(to); at += 64)
-    __builtin_prefetch(reinterpret_cast<const void*>(at));
-}
-
 // A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
 // What the soft step's sweeps over the bodies read comes first, in as few cache lines as it fits (a
 // tall pyramid's bodies do not fit the cache): the passes gather v and w, the sweeps between them

@@ -552,24 +552,6 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   }
 }
 
-// What build_wide reads of w's pairs and bodies, requested a wide constraint ahead: it visits them in
-// colour order, where each is a miss the hardware prefetcher cannot foresee. (Its constraints' pairs
-// and bodies are known before the build: constraint_pairs, and place_constraints' a and b.)
-template <int N>
-void prefetch_build(const ContactState<N>& s, const std::vector<Body<N>>& bodies, const WideConstraint<N>& w) {
-  for (const int k : w.constraint) {
-    if (k < 0) continue;
-    const Pair<N>& p = s.pairs[s.constraint_pairs[k]];
-    prefetch_lines(&p, &p.arm_b + 1);
-    for (const int i : {s.constraints[k].a, s.constraints[k].b}) {
-      const SolverBody<N>& b = s.solver_bodies[i];
-      prefetch_lines(&b.v, &b.w + 1);
-      prefetch_lines(&b.inv_mass, &b.inv_inertia + 1);
-      prefetch_lines(&bodies[i].center, &bodies[i].center + 1);
-    }
-  }
-}
-
 // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
 // colour order (soft step) or pair order, from the seeds, and for the soft step the lanes. (Not
 // cleared first: the build writes each constraint whole, and value-initialising them all was a tenth
@@ -635,10 +617,7 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   if (!s.graph_kept) place_constraints(s, bodies.size(), soft);
   if (soft) {
     s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-      for (int i = begin; i < end; ++i) {
-        if (i + 1 < end) prefetch_build(s, bodies, s.wide[i + 1]);
-        build_wide(s, bodies, materials, settings, s.wide[i]);
-      }
+      for (int i = begin; i < end; ++i) build_wide(s, bodies, materials, settings, s.wide[i]);
     });
   } else {
     s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int k0, int k1) {
