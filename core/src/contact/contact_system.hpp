@@ -34,8 +34,9 @@ namespace wedge::contact {
 
 // A pair of bodies whose bounding boxes overlap (or a half-space and a body below its plane), a < b.
 // Its fields are in the order the step reads them: the soft step's build reads the pairs in colour
-// order, where each cache line of a pair is a miss, and all it reads comes first (through arm_b, five
-// lines in 2D); what the events and the recycling read follows.
+// order, where each cache line of a pair is a miss, and all it reads comes first (through warm_arm, six
+// lines in 2D); what the recycling reads follows. The unpacking at the end of the step, in colour
+// order too, writes one line in 2D (warm_normal to warm_tangent).
 template <int N>
 struct alignas(64) Pair {
   std::uint32_t a = 0, b = 0;
@@ -54,17 +55,19 @@ struct alignas(64) Pair {
   int warm_count = 0;      // (warm start, below)
   double approach_speed = 0.0;  // m/s, >= 0: the fastest its points approached when the step began (events)
   std::array<double, 4> mass_key{};
-  // Warm start: the contact-stage impulses of the last step per feature id, given back to the points
-  // that continue them (same id, or same place), so the iterations start from last step's answer,
-  std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
-  std::array<double, kMaxManifoldPoints<N>> warm_normal{};
+  // Warm start: the contact-stage impulses of the last step per feature id (warm_id below), given back
+  // to the points that continue them (same id, or same place), so the iterations start from last
+  // step's answer. The impulses the soft step unpacks at the end of the step are together, on a line of
+  // their own in 2D (unpack_lane; the keys, warm_id and warm_arm, are kept by the build).
+  alignas(64) std::array<double, kMaxManifoldPoints<N>> warm_normal{};
+  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
   // The lever arms of the manifold's points from a's and b's centres (world frame) in this step: equal
   // to point - centre for a fresh manifold, carried along with each body for a recycled one.
   std::array<Vec<N>, kMaxManifoldPoints<N>> arm_a = zero_vectors(), arm_b = zero_vectors();
-  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
-  // and the warm points' lever arms from a's centre (world frame), to match points whose id changed
-  // by place.
+  // The warm points' feature ids, and their lever arms from a's centre (world frame), to match points
+  // whose id changed by place.
+  std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_arm = zero_vectors();
   // Contact recycling (recycling.cpp): the state when the manifold was last computed (cached), to carry
   // it along while the bodies barely move relative to each other.
@@ -82,6 +85,18 @@ struct alignas(64) Pair {
     return v;
   }
 };
+
+// What the next step's warm start matches a pair's points by (warm_matches): their count, feature ids
+// and lever arms from a's centre. (Kept as the soft step's build reads the pair, before the solve, since
+// nothing the solve does changes them; the impulses follow at the end of the step, unpack_lane.)
+template <int N>
+inline void keep_warm_keys(Pair<N>& pair, int count) {
+  pair.warm_count = count;
+  for (int k = 0; k < count; ++k) {
+    pair.warm_id[k] = pair.manifold.points[k].id;
+    pair.warm_arm[k] = pair.arm_a[k];  // (the points' and lanes' ra)
+  }
+}
 
 // A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
 // What the soft step's sweeps over the bodies read comes first, in as few cache lines as it fits (a

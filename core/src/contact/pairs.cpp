@@ -525,6 +525,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     const SolverBody<N>& sb = s.solver_bodies[c.b];
     std::array<int, kMaxManifoldPoints<N>> match;
     warm_matches(p, bodies[c.a].center, settings.contact_margin, match);
+    keep_warm_keys(p, c.count);  // (matched: the next step's keys now)
     const bool lane_kept = s.graph_kept && full && !inertia && last[l];
     double approach_speed = 0.0;
     for (int k = 0; k < c.count; ++k) {

@@ -154,18 +154,16 @@ void restitute_lane(ContactState<N>& s, const ContactSettings& settings, const W
 
 // The lanes' accumulated impulses of lane l of w to its pair, where the events, restitution and the
 // next step's warm start read them (the soft step keeps no points; the paper's solver keeps its
-// impulses in its points, keep_for_warm_start and keep_totals).
+// impulses in its points, keep_for_warm_start and keep_totals). The build has kept what the warm start
+// matches them by (keep_warm_keys).
 template <int N>
 void unpack_lane(ContactState<N>& s, const WideConstraint<N>& w, int l) {
   const Constraint<N>& c = s.constraints[w.constraint[l]];
   Pair<N>& pair = s.pairs[c.pair];
-  pair.warm_count = c.count;
   for (int k = 0; k < c.count; ++k) {
     const WidePoint<N>& q = s.wide_points[w.first + k];
-    pair.warm_id[k] = pair.manifold.points[k].id;
     pair.warm_normal[k] = q.normal_impulse[l];
     pair.normal_impulse[k] = q.normal_total[l];
-    pair.warm_arm[k] = pair.arm_a[k];  // (the points' and lanes' ra)
     if constexpr (N == 2) {
       pair.warm_tangent[k] = q.tangent_impulse[l] * tangent_2d(c.normal);
     } else {
@@ -203,14 +201,19 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   }
 }
 
-// Every lane's accumulated impulses to its pair (unpack_lane), on their own: for the tests.
+// Every lane's accumulated impulses to its pair, with the keys they are matched by (keep_warm_keys,
+// unpack_lane), on their own: for the tests. In the step the build keeps the keys, and
 // finish_soft_step unpacks each lane as it applies its restitution.
 template <int N>
 void unpack_wide(ContactState<N>& s) {
   s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
     for (int i = begin; i < end; ++i)
-      for (int l = 0; l < kLanes<N>; ++l)
-        if (s.wide[i].constraint[l] >= 0) unpack_lane(s, s.wide[i], l);
+      for (int l = 0; l < kLanes<N>; ++l) {
+        if (s.wide[i].constraint[l] < 0) continue;
+        const Constraint<N>& c = s.constraints[s.wide[i].constraint[l]];
+        keep_warm_keys(s.pairs[c.pair], c.count);
+        unpack_lane(s, s.wide[i], l);
+      }
   });
 }
 
