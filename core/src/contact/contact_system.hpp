@@ -44,8 +44,10 @@ struct alignas(64) Pair {
   bool touching = false;   // received a normal impulse or penetrated in the last step
   bool recycled = false;   // (below)
   bool cached = false;     // (contact recycling, below)
+  // Index of its constraint in this step, or -1. (In the first line, with the manifold's head: the
+  // events' sweep over every pair reads these alone.)
+  int constraint = -1;
   Manifold<N> manifold;
-  int constraint = -1;     // index of its constraint in this step, or -1
   // Where its points are in ContactState::points or point_masses (this step) and previous_masses (the
   // last step), or -1; recycled (soft step): this step's manifold is the last step's carried along
   // (recycling.cpp), so a point's normal, lever arms and, for bodies whose inertia is isotropic,
