@@ -60,8 +60,9 @@ struct alignas(64) Pair {
   // Warm start: the contact-stage impulses of the last step per feature id (warm_id below), given back
   // to the points that continue them (same id, or same place), so the iterations start from last
   // step's answer. The impulses the soft step unpacks at the end of the step are together, on a line of
-  // their own in 2D (unpack_lane; the keys, warm_id and warm_arm, are kept by the build).
-  alignas(64) std::array<double, kMaxManifoldPoints<N>> warm_normal{};
+  // their own in 2D (unpack_lane; the keys, warm_id and warm_arm, are kept by the build). (In 3D and up
+  // they take three lines or more whatever their alignment, which would cost a line per pair.)
+  alignas(N == 2 ? 64 : alignof(double)) std::array<double, kMaxManifoldPoints<N>> warm_normal{};
   std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
   std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
   // The lever arms of the manifold's points from a's and b's centres (world frame) in this step: equal
