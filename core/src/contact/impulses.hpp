@@ -114,17 +114,16 @@ void apply_accumulated(ContactState<N>& s, const Constraint<N>& c) {
   for (int k = 0; k < c.count; ++k) apply_accumulated_point(s, c, k);
 }
 
-// Keeps this step's impulses, per feature, to start the next step from (warm start). (The soft step
-// keeps them as it unpacks its lanes: unpack_wide.)
+// Keeps this step's impulses, per feature, to start the next step from (warm start), with the keys
+// they are matched by (keep_warm_keys: a point's ra is its pair's arm_a). (The soft step keeps the keys
+// as it builds and the impulses as it unpacks its lanes: unpack_lane.)
 template <int N>
 void keep_for_warm_start(ContactState<N>& s) {
   for_each_constraint(s, [&](const Constraint<N>& c) {
     Pair<N>& pair = s.pairs[c.pair];
-    pair.warm_count = c.count;
+    keep_warm_keys(pair, c.count);
     for (int k = 0; k < c.count; ++k) {
       const PointConstraint<N>& p = s.points[c.first + k];
-      pair.warm_id[k] = pair.manifold.points[k].id;
-      pair.warm_arm[k] = p.ra;
       pair.warm_normal[k] = p.normal_impulse;
       pair.warm_tangent[k] = p.tangent_impulse;
     }
