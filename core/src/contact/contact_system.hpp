@@ -48,13 +48,16 @@ struct alignas(64) Pair {
   // events' sweep over every pair reads these alone.)
   int constraint = -1;
   Manifold<N> manifold;
-  // Where its points are in ContactState::points or point_masses (this step) and previous_masses (the
-  // last step), or -1; recycled (soft step): this step's manifold is the last step's carried along
-  // (recycling.cpp), so a point's normal, lever arms and, for bodies whose inertia is isotropic,
-  // effective masses are the same, and the build takes them from the last step's. mass_key: the
-  // bodies' 1/m and isotropic 1/I those masses were formed with.
-  int points_first = -1, previous_first = -1;
+  // Where its points were put in ContactState::points or point_masses by the build numbered `built`
+  // (ContactState::builds), or -1: the last step's when built + 1 is this step's number (last_first).
+  // recycled (soft step): this step's manifold is the last step's carried along (recycling.cpp), so a
+  // point's normal, lever arms and, for bodies whose inertia is isotropic, effective masses are the
+  // same, and the build takes them from the last step's. mass_key: the bodies' 1/m and isotropic 1/I
+  // those masses were formed with. (Numbered rather than reset each step: the sweep that started the
+  // build wrote this line and the impulses' of every pair, 8 MB a step in a 100-row pyramid.)
+  int points_first = -1;
   int warm_count = 0;      // (warm start, below)
+  std::uint64_t built = 0;
   double approach_speed = 0.0;  // m/s, >= 0: the fastest its points approached when the step began (events)
   std::array<double, 4> mass_key{};
   // Warm start: the contact-stage impulses of the last step per feature id (warm_id below), given back
@@ -184,7 +187,7 @@ struct PointConstraint {
 
 // What the soft step's lanes take of a point's effective masses and Jacobian (the rest of its lanes come
 // from its LanePoint, lane_fill.hpp): formed from K, or, for a recycled pair of isotropic bodies, the last step's
-// (ContactState::point_masses, Pair::previous_first). 2D keeps the tangent mass along t alone (wide.hpp).
+// (ContactState::point_masses, Pair::points_first and built). 2D keeps the tangent mass along t alone (wide.hpp).
 template <int N>
 struct PointMasses {
   using Biv = Eigen::Matrix<double, kBiv<N>, 1>;
@@ -304,9 +307,10 @@ struct ContactState {
   std::vector<int> colour_start;
   std::vector<PointConstraint<N>> points;
   // The soft step builds no PointConstraints: its points go straight into the lanes, and what a recycled
-  // pair's points keep is here, this step's and the last (Pair::points_first, previous_first).
+  // pair's points keep is here, this step's and the last (Pair::points_first, built).
   std::vector<PointMasses<N>> point_masses, previous_masses;
   bool built_soft = false;  // the last step's constraints were the soft step's (previous_masses is theirs)
+  std::uint64_t builds = 0;  // the builds so far, this step's included (Pair::built)
   // Soft step: the constraints in lanes (wide.hpp), colour by colour; wide_start as colour_start.
   std::vector<WideConstraint<N>> wide;
   std::vector<WidePoint<N>> wide_points;

@@ -356,9 +356,14 @@ std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
 // normal and lever arms, and with isotropic bodies of the same masses the effective masses and
 // Jacobian rows are then those of the last step, to the bit (the same function of the same numbers):
 // copied rather than formed again (an eighth of the instructions of a resting pyramid of cubes).
+// Where pair p's points were in the last step's build, or -1 (before this step's build writes them).
+template <int N>
+int last_first(const ContactState<N>& s, const Pair<N>& p) {
+  return p.built + 1 == s.builds ? p.points_first : -1;
+}
 template <int N>
 bool masses_recycled(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
-  return s.built_soft && p.recycled && p.previous_first >= 0 && a.isotropic && b.isotropic &&
+  return s.built_soft && p.recycled && last_first(s, p) >= 0 && a.isotropic && b.isotropic &&
          mass_key(a, b) == p.mass_key;
 }
 
@@ -415,11 +420,14 @@ Mat<N> point_k(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& ra,
 // and the masses' key.
 template <int N>
 void note_constraint(Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b, int index, int first,
-                     double approach_speed) {
+                     double approach_speed, std::uint64_t builds) {
   p.constraint = index;
   p.approach_speed = approach_speed;
   p.points_first = first;
+  p.built = builds;
   p.mass_key = mass_key(a, b);
+  // (Its impulses until the step's end writes them: 0 past its last point, as for a pair without one.)
+  p.normal_impulse.fill(0.0);
 }
 
 // The paper's solver: the constraint of pair pi, as constraints[index], its points as points[first] on.
@@ -451,7 +459,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     q.dn_b = inverse_inertia_times(sb, q.jn_b);
     q.pseudo_mass = q.normal_mass;
   }
-  note_constraint(p, sa, sb, index, first, approach_speed);
+  note_constraint(p, sa, sb, index, first, approach_speed, s.builds);
   s.constraints[index] = c;
 }
 
@@ -511,7 +519,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     if (w.constraint[l] < 0) continue;
     const Constraint<N>& c = s.constraints[w.constraint[l]];
     const Pair<N>& p = s.pairs[c.pair];
-    if (masses_recycled(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b])) last[l] = &previous[p.previous_first];
+    if (masses_recycled(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b])) last[l] = &previous[last_first(s, p)];
     header_kept = header_kept && last[l];
   }
   if (!header_kept) fill_wide_header(s, w);
@@ -549,7 +557,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
       const Biv zero = Biv::Zero();
       for (int k = c.count; k < w.count; ++k) put_lane_point(s, w, k, l, c.normal, none, pad, zero, zero);
     }
-    note_constraint(p, sa, sb, w.constraint[l], c.first, approach_speed);
+    note_constraint(p, sa, sb, w.constraint[l], c.first, approach_speed, s.builds);
   }
 }
 
@@ -589,19 +597,17 @@ template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                        const ContactSettings& settings) {
   const bool soft = settings.solver == ContactSolver::SoftStep;
+  ++s.builds;
   s.seeds.swap(s.previous_seeds);
   s.seeds.clear();
   for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
     Pair<N>& p = s.pairs[pi];
     p.constraint = -1;
-    p.previous_first = p.points_first;
-    p.points_first = -1;
     if (!p.updated) continue;
     if (p.manifold.count == 0) {
       p.warm_count = 0;
       continue;
     }
-    p.normal_impulse.fill(0.0);
     const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
     if (!da && !db) continue;
     s.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db, !da || s.solver_bodies[p.a].isotropic,
