@@ -53,8 +53,8 @@ struct alignas(64) Pair {
   // recycled (soft step): this step's manifold is the last step's carried along (recycling.cpp), so a
   // point's normal, lever arms and, for bodies whose inertia is isotropic, effective masses are the
   // same, and the build takes them from the last step's. mass_key: the bodies' 1/m and isotropic 1/I
-  // those masses were formed with. (Numbered rather than reset each step: the sweep that started the
-  // build wrote this line and the impulses' of every pair, 8 MB a step in a 100-row pyramid.)
+  // those masses were formed with. (Numbered rather than reset every step: the sweep that starts the
+  // build then wrote this line of every pair, and zeroed its impulses on another.)
   int points_first = -1;
   int warm_count = 0;      // (warm start, below)
   std::uint64_t built = 0;

@@ -347,6 +347,11 @@ Constraint<N> make_constraint(const ContactState<N>& s, const std::vector<Materi
   return c;
 }
 
+// Where pair p's points were in the last step's build, or -1 (read before this step's build writes them).
+template <int N>
+int last_first(const ContactState<N>& s, const Pair<N>& p) {
+  return p.built + 1 == s.builds ? p.points_first : -1;
+}
 // The bodies' 1/m and isotropic 1/I, which a recycled pair's masses were formed with (Pair::mass_key).
 template <int N>
 std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
@@ -356,11 +361,6 @@ std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
 // normal and lever arms, and with isotropic bodies of the same masses the effective masses and
 // Jacobian rows are then those of the last step, to the bit (the same function of the same numbers):
 // copied rather than formed again (an eighth of the instructions of a resting pyramid of cubes).
-// Where pair p's points were in the last step's build, or -1 (before this step's build writes them).
-template <int N>
-int last_first(const ContactState<N>& s, const Pair<N>& p) {
-  return p.built + 1 == s.builds ? p.points_first : -1;
-}
 template <int N>
 bool masses_recycled(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
   return s.built_soft && p.recycled && last_first(s, p) >= 0 && a.isotropic && b.isotropic &&
