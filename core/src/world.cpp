@@ -386,8 +386,8 @@ void World<N>::soft_step(double h) {
   const ContactSettings& c = settings_.contact;
   const double hs = h / c.substeps;
   StageClock clock;
-  contact::prepare_soft_step(*contact_, bodies_, c, hs);
-  prepare_substep_velocities(hs);
+  contact::prepare_soft_contacts(*contact_, c, hs);
+  prepare_substep_velocities(hs);  // (and each body's start, contact::start_body_motion)
   for (int i = 0; i < c.substeps; ++i) {
     for (const int b : contact_->integrate_apart) {
       contact::SolverBody<N>& sb = contact_->solver_bodies[b];
@@ -410,23 +410,27 @@ void World<N>::soft_step(double h) {
 // v = (v + dv) decay_v and w = w decay_w with the same numbers every sub-step, worked out here once
 // (integrate_velocity's arithmetic, so the same bits) and run by the solve sub-step in its first sweep
 // (contact::integrate_substep_velocity). The bodies it cannot do are listed for integrate_velocity.
+// The same sweep notes where each body starts the step (contact::start_body_motion, which
+// contact::prepare_soft_step does in a sweep of its own for callers without World).
 template <int N>
 void World<N>::prepare_substep_velocities(double h) {
   contact::ContactState<N>& s = *contact_;
   contact::for_each_body(s, int(bodies_.size()), [&](int i) {
     const Body<N>& b = bodies_[i];
     contact::SolverBody<N>& sb = s.solver_bodies[i];
+    contact::start_body_motion(sb, b);
+    const bool moves = contact::moves(s, bodies_, i);
     sb.integrates = false;
-    sb.apart = contact::moves(s, bodies_, i) && velocity_needs_body(b);  // (as integrate_apart below)
-    if (!contact::moves(s, bodies_, i) || velocity_needs_body(b)) return;
+    sb.apart = moves && velocity_needs_body(b);  // (integrate_apart below)
+    if (!moves || sb.apart) return;
     sb.integrates = true;
     sb.dv = h * (settings_.gravity + b.force * b.inv_mass);
     sb.decay_v = 1.0 / (1.0 + h * b.linear_drag);
     sb.decay_w = 1.0 / (1.0 + h * b.angular_drag);
   });
-  s.integrate_apart.clear();
+  s.integrate_apart.clear();  // (from the flag: the bodies' torques and inertias are lines more each)
   for (int i = 0; i < int(bodies_.size()); ++i)
-    if (contact::moves(s, bodies_, i) && velocity_needs_body(bodies_[i])) s.integrate_apart.push_back(i);
+    if (s.solver_bodies[i].apart) s.integrate_apart.push_back(i);
 }
 template <int N>
 void World<N>::process_collisions(double h) {

@@ -446,9 +446,22 @@ double solve_grabs(ContactState<N>& state);
 // of the bodies in integrate_apart, solve_substep(use_bias = true) (the others' velocity integration
 // first, integrate_substep_velocity), integrate_positions (with track_body_motion) and
 // solve_substep(false).
+// prepare_soft_step = start_body_motion for every body, then prepare_soft_contacts. World does the
+// first in its own sweep over the bodies at the step's start (prepare_substep_velocities), one sweep
+// fewer.
 template <int N>
 void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h);
+template <int N>
+void prepare_soft_contacts(ContactState<N>& state, const ContactSettings& settings, double h);
+// Where a body starts the soft step, for its motion since (track_body_motion).
+template <int N>
+inline void start_body_motion(SolverBody<N>& sb, const Body<N>& body) {
+  sb.x0 = body.center;
+  sb.r0_inverse = to_matrix(body.rotor).transpose();
+  sb.dp.setZero();
+  sb.dq.setIdentity();
+}
 template <int N>
 void solve_substep(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
                    double h, bool use_bias);

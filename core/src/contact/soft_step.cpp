@@ -283,13 +283,11 @@ void pack_wide(ContactState<N>& s) {
 template <int N>
 void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h) {
-  for_each_body(s, int(bodies.size()), [&](int i) {
-    SolverBody<N>& sb = s.solver_bodies[i];
-    sb.x0 = bodies[i].center;
-    sb.r0_inverse = to_matrix(bodies[i].rotor).transpose();
-    sb.dp.setZero();
-    sb.dq.setIdentity();
-  });
+  for_each_body(s, int(bodies.size()), [&](int i) { start_body_motion(s.solver_bodies[i], bodies[i]); });
+  prepare_soft_contacts(s, settings, h);
+}
+template <int N>
+void prepare_soft_contacts(ContactState<N>& s, const ContactSettings& settings, double h) {
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
   const Softness soft = make_soft(std::min(settings.contact_hertz, 0.125 / h), settings.contact_damping_ratio, h);
@@ -456,6 +454,7 @@ Lanes default_lanes() {
 
 #define WEDGE_INSTANTIATE(N)                                                                                   \
   template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
+  template void prepare_soft_contacts<N>(ContactState<N>&, const ContactSettings&, double);                         \
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \
   template void flush_pass_change<N>(ContactState<N>&);                                                       \
