@@ -419,10 +419,10 @@ void World<N>::prepare_substep_velocities(double h) {
     const Body<N>& b = bodies_[i];
     contact::SolverBody<N>& sb = s.solver_bodies[i];
     contact::start_body_motion(sb, b);
-    const bool moves = contact::moves(s, bodies_, i);
+    const bool moving = contact::moves(s, bodies_, i);
     sb.integrates = false;
-    sb.apart = moves && velocity_needs_body(b);  // (integrate_apart below)
-    if (!moves || sb.apart) return;
+    sb.apart = moving && velocity_needs_body(b);  // (integrate_apart below)
+    if (!moving || sb.apart) return;
     sb.integrates = true;
     sb.dv = h * (settings_.gravity + b.force * b.inv_mass);
     sb.decay_v = 1.0 / (1.0 + h * b.linear_drag);

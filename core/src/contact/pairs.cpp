@@ -357,14 +357,15 @@ template <int N>
 std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
   return {a.inv_mass, a.iso_inv_inertia, b.inv_mass, b.iso_inv_inertia};
 }
-// Whether pair p's points may take their masses from the last step's: a recycled manifold keeps its
-// normal and lever arms, and with isotropic bodies of the same masses the effective masses and
-// Jacobian rows are then those of the last step, to the bit (the same function of the same numbers):
-// copied rather than formed again (an eighth of the instructions of a resting pyramid of cubes).
+// Where in the last step's masses pair p's points may take theirs from, or -1: a recycled manifold
+// keeps its normal and lever arms, and with isotropic bodies of the same masses the effective masses
+// and Jacobian rows are then those of the last step, to the bit (the same function of the same
+// numbers): copied rather than formed again (an eighth of the instructions of a resting pyramid of
+// cubes).
 template <int N>
-bool masses_recycled(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
-  return s.built_soft && p.recycled && last_first(s, p) >= 0 && a.isotropic && b.isotropic &&
-         mass_key(a, b) == p.mass_key;
+int recycled_masses(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
+  if (!(s.built_soft && p.recycled && a.isotropic && b.isotropic && mass_key(a, b) == p.mass_key)) return -1;
+  return last_first(s, p);
 }
 
 // Point k of constraint c, all but its masses: lever arms, gap, approach speed, friction (static if the
@@ -519,7 +520,8 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     if (w.constraint[l] < 0) continue;
     const Constraint<N>& c = s.constraints[w.constraint[l]];
     const Pair<N>& p = s.pairs[c.pair];
-    if (masses_recycled(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b])) last[l] = &previous[last_first(s, p)];
+    const int first = recycled_masses(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b]);
+    if (first >= 0) last[l] = &previous[first];
     header_kept = header_kept && last[l];
   }
   if (!header_kept) fill_wide_header(s, w);
