@@ -8,7 +8,7 @@
 
 #include "scene_json.hpp"
 #include "wedge/input/interaction.hpp"
-#include "wedge/input/recording_source.hpp"
+#include "wedge/recordings/recording_source.hpp"
 #include "wedge/mass.hpp"
 
 using namespace wedge;
@@ -70,7 +70,7 @@ void BM_ReplayToyTable(benchmark::State& state) {
   double simulated = 0.0;
   for (auto _ : state) {
     World<4> world = scene.make_world("toy_table_4d.json");
-    input::RecordingSource src({recording}, {rec});
+    recordings::RecordingSource src({recording}, {rec});
     input::InteractionSettings<4> settings;
     settings.tracking.origin = scene.interaction.origin;
     input::Interaction<4> in(world, settings);

@@ -254,9 +254,9 @@ TEST_CASE("a still phone tilted by a known angle tilts gravity by that angle, an
       // A phone upright, turned by the angle about its z axis (out of the screen): the accelerometer,
       // still, reads gravity in the device frame: (sin a, -cos a, 0) g.
       const double a = tilt_deg * M_PI / 180;
-      std::vector<recordings::MotionSample> samples;
+      std::vector<input::MotionSample> samples;
       for (int i = 0; i <= 300; ++i) {  // 3 s at 100 Hz
-        recordings::MotionSample m;
+        input::MotionSample m;
         m.t = i * 0.01;
         m.acceleration = Eigen::Vector3d(std::sin(a), -std::cos(a), 0.0);
         m.tilt = tilt_on;
@@ -268,7 +268,7 @@ TEST_CASE("a still phone tilted by a known angle tilts gravity by that angle, an
         f.t = k * kH;
         std::size_t end = used;
         while (end < samples.size() && samples[end].t <= f.t) ++end;
-        f.motion = std::span<const recordings::MotionSample>(samples.data() + used, end - used);
+        f.motion = std::span<const input::MotionSample>(samples.data() + used, end - used);
         used = end;
         in.before_step(f, kH);
         world.step(kH);

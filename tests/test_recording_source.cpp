@@ -10,7 +10,7 @@
 
 #include "test_util.hpp"
 #include "wedge/input/interaction.hpp"
-#include "wedge/input/recording_source.hpp"
+#include "wedge/recordings/recording_source.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/recordings/coremotion_csv.hpp"
 
@@ -47,6 +47,7 @@ void* realloc(void* p, std::size_t n) noexcept {
 
 using namespace wedge;
 using namespace wedge::input;
+using wedge::recordings::RecordingSource;
 using recordings::HandSample;
 using recordings::MotionSample;
 using recordings::Recording;

@@ -90,7 +90,7 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     World<N> world = scene.make_world(file);
     slicing::WorldSlices<N> slices = scene_slices<N>(world, w, subdivisions, file);
     std::optional<ReplayInput<N>> replay;  // --replay: recordings drive the world through the input layer
-    if (!o.replay.empty()) replay.emplace(scene, world, o.replay, file);
+    if (!o.replay.empty()) replay.emplace(scene, world, o.replay, file, h);
 
     // Simulate first: the states of the frames to draw, and the corners of the box around every body's
     // slice in every one of them: what the camera must show.
@@ -113,10 +113,12 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     Progress sim_progress("simulate", run.steps);
     record();
     for (std::int64_t s = 1; s <= run.steps; ++s) {
-      if (replay)
-        replay->step(world, s - 1, h, file);
-      else
+      if (replay) {
+        replay->step();
+        replay->session().clear_output();  // (the pictures show no events)
+      } else {
         checked_step(world, h, file);  // checks for Ctrl-C first
+      }
       if (s % run.every == 0) record();
       if (s % 64 == 0) sim_progress.update(s);
     }

@@ -1,27 +1,22 @@
 // wedge replay SCENE.json RECORDING... [--out STATES.jsonl] [--every K] [--events EVENTS.jsonl] [--hash]
 //                                       [--until T] [--dt H] [--workers N]
 //
-// Replays recorded device streams (docs/recording-format.md) into a scene through the input layer, at
-// the scene's fixed step: each step reads the input frame at its start time, applies it (grabs, torques,
-// gravity), steps, and turns the step's contact begin events into haptic pulses. The state lines are
+// Replays recorded device streams (docs/recording-format.md) into a scene through an input session
+// (wedge/input/session.hpp), at the scene's fixed step: each step reads the input frame at its start
+// time, applies it (grabs, torques, gravity), steps, and turns the step's contact begin events into haptic
+// pulses. The state lines are
 // simulate's plus `gravity` and `hands`; --events writes the grabs, releases and haptic pulses. A
 // replay is a pure function of (scene, recordings): the same files give the same state hash.
 #include <CLI/CLI.hpp>
-#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 
-#include "event_json.hpp"
 #include "interrupt.hpp"
-#include "json_out.hpp"
 #include "replay_input.hpp"
 #include "scene_json.hpp"
-#include "state_json.hpp"
+#include "session_output.hpp"
 #include "step_options.hpp"
 #include "verbs.hpp"
-#include "wedge/input/interaction.hpp"
-#include "wedge/input/recording_source.hpp"
-#include "wedge/recordings/recording.hpp"
 
 namespace wedge::cli {
 
@@ -36,70 +31,26 @@ int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>&
   World<N> world = scene.make_world(file);
   world.settings().workers = workers;
 
-  ReplayInput<N> replay(scene, world, o.recordings, file);
-  const input::RecordingSource& src = replay.source();
-  const input::Interaction<N>& in = replay.interaction();
-
-  const double end = until ? *until : src.duration();
+  ReplayInput<N> replay(scene, world, o.recordings, file, h);
+  const double end = until ? *until : replay.source().duration();
   const std::int64_t steps = std::int64_t(std::ceil(end / h - 1e-9));
-  OutputSink out(o.out);
-  std::optional<OutputSink> events;
-  if (!o.events.empty()) events.emplace(o.events);
-  auto emit = [&] {
-    OutJson line = state_line(world);
-    line["gravity"] = to_json(world.gravity());
-    OutJson hands = OutJson::array();
-    for (int k = 0; k < input::kHandCount; ++k) {
-      OutJson jh;
-      jh["hand"] = hand_name(k);
-      jh["tracked"] = in.tracked(k);
-      jh["point"] = to_json(in.hand_point(k));
-      jh["holding"] = in.held(k) ? OutJson(world.name(*in.held(k))) : OutJson(nullptr);
-      hands.push_back(std::move(jh));
-    }
-    line["hands"] = std::move(hands);
-    check_finite_line(line, world, file);
-    out.write_line(line.dump());
-  };
-  std::int64_t grabs = 0, releases = 0, pulses = 0;
-  auto event_lines = [&] {
-    for (const input::InteractionEvent<N>& e : in.events()) {
-      (e.kind == input::InteractionEvent<N>::Kind::Grab ? grabs : releases)++;
-      if (events) events->write_line(event_json(world, e).dump());
-    }
-  };
-  auto pulse_lines = [&] {
-    for (const input::HapticPulse<N>& p : in.pulses()) {
-      ++pulses;
-      if (events) events->write_line(pulse_json(world, p).dump());
-    }
-  };
-
-  emit();
+  SessionOutput<N> output(file, o.out, o.events, every);
+  output.write_state(replay.session());
   for (std::int64_t k = 0; k < steps; ++k) {
-    replay.step(world, k, h, file);
-    event_lines();
-    pulse_lines();
-    if ((k + 1) % every == 0) emit();
+    replay.step();
+    output.after_step(replay.session());
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016" PRIx64, world.state_hash());
-  if (o.hash) {
-    OutJson line;
-    line["state_hash"] = hex;
-    out.write_line(line.dump());
-  }
+  const std::string hash = hash_text(world.state_hash());
+  if (o.hash) output.write_hash(world.state_hash());
   throw_if_interrupted();
-  if (events) events->commit();
-  out.commit();
+  output.commit();
   if (!o.out.empty()) {
-    std::printf("replayed %.3f s (%lld steps) of %zu recording%s: %lld grab%s, %lld release%s, %lld haptic pulse%s; "
-                "wrote %lld states to %s%s%s%s%s\n",
-                double(steps) * h, (long long)steps, o.recordings.size(), o.recordings.size() == 1 ? "" : "s",
-                (long long)grabs, grabs == 1 ? "" : "s", (long long)releases, releases == 1 ? "" : "s",
-                (long long)pulses, pulses == 1 ? "" : "s", (long long)(steps / every + 1), o.out.c_str(),
+    std::printf("replayed %.3f s (%lld steps) of %s: %s, %s, %s; wrote %lld states to %s%s%s%s%s\n",
+                double(steps) * h, (long long)steps, count_of(std::int64_t(o.recordings.size()), "recording").c_str(),
+                count_of(output.grabs(), "grab").c_str(), count_of(output.releases(), "release").c_str(),
+                count_of(output.pulses(), "haptic pulse").c_str(), (long long)(steps / every + 1), o.out.c_str(),
                 o.events.empty() ? "" : " and events to ", o.events.c_str(), o.hash ? "; state hash " : "",
-                o.hash ? hex : "");
+                o.hash ? hash.c_str() : "");
   }
   return kExitOk;
 }

@@ -1,5 +1,5 @@
-// Recordings driving a scene's World through the input layer: shared by `wedge replay` and
-// `wedge render --replay`. Loads and merges the recordings (warnings to stderr), refuses the ones that
+// Recordings driving a scene's World through an input session: shared by `wedge replay`, `wedge render
+// --replay` and `wedge view --replay`. Loads and merges the recordings (warnings to stderr), refuses the ones that
 // cannot mean anything in the scene, and runs the input layer around each step.
 #pragma once
 
@@ -10,7 +10,8 @@
 #include "scene_json.hpp"
 #include "step_options.hpp"
 #include "wedge/input/interaction.hpp"
-#include "wedge/input/recording_source.hpp"
+#include "wedge/input/session.hpp"
+#include "wedge/recordings/recording_source.hpp"
 #include "wedge/recordings/recording.hpp"
 
 namespace wedge::cli {
@@ -26,14 +27,14 @@ input::InteractionSettings<N> interaction_settings(const Scene<N>& scene) {
   return s;
 }
 
-inline input::RecordingSource load_recordings(const std::vector<std::string>& files) {
+inline recordings::RecordingSource load_recordings(const std::vector<std::string>& files) {
   std::vector<recordings::Recording> recs;
   try {
     for (const std::string& f : files) {
       recs.push_back(recordings::read_recording(f));
       for (const std::string& w : recs.back().warnings) std::cerr << "wedge: warning: " << w << "\n";
     }
-    return input::RecordingSource(std::move(recs), files);
+    return recordings::RecordingSource(std::move(recs), files);
   } catch (const Error& e) {
     throw Failure(e.what());  // (the message starts with the file and line)
   }
@@ -41,7 +42,7 @@ inline input::RecordingSource load_recordings(const std::vector<std::string>& fi
 
 // A recording that cannot mean anything in this scene is refused before anything runs.
 template <int N>
-void check_fit(const Scene<N>& scene, const input::RecordingSource& src, const std::vector<std::string>& files,
+void check_fit(const Scene<N>& scene, const recordings::RecordingSource& src, const std::vector<std::string>& files,
                const std::string& scene_file) {
   if (N < 4 && src.uses_mode4d()) {
     const int hand = src.source_of_hand(1) >= 0 ? 1 : 0;
@@ -58,30 +59,44 @@ void check_fit(const Scene<N>& scene, const input::RecordingSource& src, const s
     throw Failure(files.front() + ": holds no hand or accelerometer samples (nothing to replay)");
 }
 
-// The recordings and the input layer over one world.
+// The session settings of a scene: its interaction block and its step (or --dt's).
+template <int N>
+input::SessionSettings<N> session_settings(const Scene<N>& scene, double h) {
+  input::SessionSettings<N> s;
+  s.interaction = interaction_settings(scene);
+  s.timestep = h;
+  return s;
+}
+
+// An input session over one world whose steps are checked as every verb's are (checked_step: Ctrl-C,
+// non-finite states named with the scene file).
+template <int N>
+input::Session<N> make_session(const Scene<N>& scene, World<N>& world, double h, const std::string& scene_file) {
+  input::Session<N> session =
+      with_file_context(scene_file, "interaction", [&] { return input::Session<N>(world, session_settings(scene, h)); });
+  session.set_step_function([scene_file](World<N>& w, double step) { checked_step(w, step, scene_file); });
+  return session;
+}
+
+// Recordings driving one world through an input session: step k takes the recordings' frame at t = k h.
 template <int N>
 class ReplayInput {
  public:
   ReplayInput(const Scene<N>& scene, World<N>& world, const std::vector<std::string>& files,
-              const std::string& scene_file)
-      : source_(load_recordings(files)), interaction_(make(scene, world, scene_file)) {
+              const std::string& scene_file, double h)
+      : source_(load_recordings(files)), session_(make_session(scene, world, h, scene_file)) {
     check_fit(scene, source_, files, scene_file);
   }
-  // Step k of h seconds with the input at t = k h around it (checked_step: Ctrl-C and non-finite states).
-  void step(World<N>& world, std::int64_t k, double h, const std::string& scene_file) {
-    interaction_.before_step(source_.frame_at(double(k) * h), h);
-    checked_step(world, h, scene_file);
-    interaction_.after_step();
-  }
-  const input::RecordingSource& source() const { return source_; }
-  const input::Interaction<N>& interaction() const { return interaction_; }
+  // The next step, with the recordings' input at its start time.
+  void step() { session_.step(source_.frame_at(session_.time())); }
+  const recordings::RecordingSource& source() const { return source_; }
+  input::Session<N>& session() { return session_; }
+  const input::Session<N>& session() const { return session_; }
+  const input::Interaction<N>& interaction() const { return session_.interaction(); }
 
  private:
-  static input::Interaction<N> make(const Scene<N>& scene, World<N>& world, const std::string& file) {
-    return with_file_context(file, "interaction", [&] { return input::Interaction<N>(world, interaction_settings(scene)); });
-  }
-  input::RecordingSource source_;
-  input::Interaction<N> interaction_;
+  recordings::RecordingSource source_;
+  input::Session<N> session_;
 };
 
 }  // namespace wedge::cli

@@ -237,7 +237,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     const double h = scene.timestep;
     World<N> world = scene.make_world(file);
     std::unique_ptr<ReplayInput<N>> replay;  // (not std::optional: GCC 12 warns falsely about its reset)
-    if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file);
+    if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file, h);
     std::vector<double> w = w0;
     w.resize(std::size_t(std::max(N - 3, 0)), 0.0);
     // Round shapes at two levels: `subdivisions` when still, `play_subdivisions` while the scene plays.
@@ -292,11 +292,28 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     // a recording has no slice offsets, so then the hand stays in the scene's own slice and its samples
     // mean the same to `wedge replay`).
     const bool recording = !o.record.empty();
+    recordings::Recording record;  // --record: the mouse hand (and the phone), written on exit
+    record.source = "viewer";
     auto mouse_layer = [&] {
-      input::InteractionSettings<N> settings = interaction_settings(scene);
+      input::SessionSettings<N> settings = session_settings(scene, h);
       if (!recording)
-        for (int a = 3; a < N; ++a) settings.tracking.origin[a] = slices.flat().origin[a];
-      return std::make_unique<input::Interaction<N>>(world, settings);
+        for (int a = 3; a < N; ++a) settings.interaction.tracking.origin[a] = slices.flat().origin[a];
+      auto session = std::make_unique<input::Session<N>>(world, settings);
+      session->set_step_function([&file](World<N>& stepped, double step) { checked_step(stepped, step, file); });
+      if (recording)  // one sample per step, at its time: replay reads it back exactly
+        session->set_observer([&record](const input::InputFrame& f) {
+          record.motion.insert(record.motion.end(), f.motion.begin(), f.motion.end());
+          if (!f.hands[1].tracked) return;
+          recordings::HandSample sample;
+          sample.t = f.t;
+          sample.hand = recordings::Hand::Right;
+          sample.pose.position = f.hands[1].position;
+          sample.pose.orientation = f.hands[1].orientation;
+          sample.squeeze = f.hands[1].squeeze;
+          sample.mode4d = f.hands[1].mode4d;
+          record.hands.push_back(sample);
+        });
+      return session;
     };
     // Slice coordinates of the hand -> tracking coordinates of the scene's interaction.
     auto to_tracking = [&](const Eigen::Vector3d& p) {
@@ -305,9 +322,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
         t[a] = (slices.flat().origin[a] + p[a] - scene.interaction.origin[a]) / scene.interaction.scale;
       return t;
     };
-    recordings::Recording record;
-    record.source = "viewer";
-    std::unique_ptr<input::Interaction<N>> mouse_in;
+    std::unique_ptr<input::Session<N>> mouse_in;
     if (!replay) mouse_in = mouse_layer();
     std::vector<std::string> pulse_log;
     std::vector<std::pair<Vec<N>, double>> flashes;  // haptic pulses shown: contact point, until (s)
@@ -324,10 +339,11 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       hand_flash[std::size_t(p.hand)] = world.time() + 0.25;
       if (events) events->write_line(pulse_json(world, p).dump());
     };
-    auto log_events = [&](const input::Interaction<N>& layer) {
-      for (const input::HapticPulse<N>& p : layer.pulses()) log_pulse(p);
+    auto log_events = [&](input::Session<N>& session) {
+      for (const input::HapticPulse<N>& p : session.pulses()) log_pulse(p);
       if (events)
-        for (const input::InteractionEvent<N>& e : layer.events()) events->write_line(event_json(world, e).dump());
+        for (const input::InteractionEvent<N>& e : session.events()) events->write_line(event_json(world, e).dump());
+      session.clear_output();
     };
     // Moves the slice through body `id`'s centre (the panel's list, or a script's "find").
     auto find_body = [&](BodyId id) {  // (and turns the camera to it: the orbit's target moves to its centre)
@@ -593,7 +609,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (reset) {
         world = scene.make_world(file);
         replay.reset();
-        if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file);
+        if (!o.replay.empty()) replay = std::make_unique<ReplayInput<N>>(scene, world, o.replay, file, h);
         mouse_in.reset();
         if (!replay) mouse_in = mouse_layer();
         hand = MouseHand{};
@@ -607,8 +623,8 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
       if (steps == 64) pending = 0.0;  // too slow to keep up: drop the debt rather than spiral
       for (int s = 0; s < steps; ++s) {
         if (replay) {
-          replay->step(world, world.step_count(), h, file);
-          log_events(replay->interaction());
+          replay->step();
+          log_events(replay->session());
           continue;
         }
         input::InputFrame input_frame;
@@ -625,21 +641,8 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
           motion.acceleration = phone.acceleration();
           motion.tilt = phone.tilt_w;
           input_frame.motion = std::span<const recordings::MotionSample>(&motion, 1);
-          if (recording) record.motion.push_back(motion);
         }
-        if (recording && right.tracked) {  // one sample per step, at its time: replay reads it back exactly
-          recordings::HandSample sample;
-          sample.t = input_frame.t;
-          sample.hand = recordings::Hand::Right;
-          sample.pose.position = right.position;
-          sample.pose.orientation = right.orientation;
-          sample.squeeze = right.squeeze;
-          sample.mode4d = right.mode4d;
-          record.hands.push_back(sample);
-        }
-        mouse_in->before_step(input_frame, h);
-        checked_step(world, h, file);
-        mouse_in->after_step();
+        mouse_in->step(input_frame);
         log_events(*mouse_in);
       }
       times.add(seconds_since(t0), slicing_time, drawing_time);

@@ -108,7 +108,7 @@ void Interaction<N>::before_step(const InputFrame& frame, double h) {
 template <int N>
 void Interaction<N>::update_gravity(const InputFrame& frame) {
   if (frame.motion.empty()) return;
-  for (const recordings::MotionSample& m : frame.motion) {
+  for (const MotionSample& m : frame.motion) {
     if (!filter_) {
       GravityFilterSettings fs;
       fs.time_constant =

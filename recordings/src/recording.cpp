@@ -251,15 +251,15 @@ class SampleWriter {
   [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
     throw Error(path_ + ": cannot write " + where + ": " + problem);
   }
-  const std::string& path_;
+  std::string path_;
   double last_t_ = 0.0;
 };
 
-std::string header_line(const Recording& r) {
+std::string header_line(const std::string& source) {
   OutJson h;
   h["format"] = "wedge-recording";
   h["version"] = kRecordingVersion;
-  h["source"] = r.source;
+  h["source"] = source;
   OutJson units;
   for (std::size_t k = 0; k < kUnitKeys.size(); ++k) units[kUnitKeys[k]] = kUnitValues[k];
   h["units"] = units;
@@ -271,6 +271,51 @@ std::string header_line(const Recording& r) {
       {"buttons", "Oculus Touch: A, B on the right hand, X, Y on the left"},
   };
   return h.dump();
+}
+
+// One sample as its line (no newline), checked as the reader would check it.
+std::string sample_line(SampleWriter& check, const HandSample& h, const std::string& where) {
+  check.time(h.t, where);
+  check.pose(h.pose, where);
+  check.unit_interval(h.squeeze, where, "squeeze");
+  check.unit_interval(h.trigger, where, "trigger");
+  OutJson s;
+  s["t"] = h.t;
+  s["type"] = "hand";
+  s["hand"] = h.hand == Hand::Left ? "left" : "right";
+  s["position"] = to_json(h.pose.position);
+  s["orientation"] = to_json(h.pose.orientation);
+  s["squeeze"] = h.squeeze;
+  s["trigger"] = h.trigger;
+  s["buttons"] = OutJson::array();
+  for (const auto& [bit, name] : kButtons)
+    if (h.buttons & bit) s["buttons"].push_back(name);
+  s["mode4d"] = h.mode4d;
+  return s.dump();
+}
+std::string sample_line(SampleWriter& check, const HeadSample& g, const std::string& where) {
+  check.time(g.t, where);
+  check.pose(g.pose, where);
+  OutJson s;
+  s["t"] = g.t;
+  s["type"] = "head";
+  s["position"] = to_json(g.pose.position);
+  s["orientation"] = to_json(g.pose.orientation);
+  return s.dump();
+}
+std::string sample_line(SampleWriter& check, const MotionSample& m, const std::string& where) {
+  check.time(m.t, where);
+  check.finite(m.acceleration, where, "acceleration");
+  OutJson s;
+  s["t"] = m.t;
+  s["type"] = "motion";
+  s["acceleration"] = to_json(m.acceleration);
+  if (m.has_rotation_rate) {
+    check.finite(m.rotation_rate, where, "rotation_rate");
+    s["rotation_rate"] = to_json(m.rotation_rate);
+  }
+  s["tilt"] = m.tilt;
+  return s.dump();
 }
 
 // The whole file, or nothing: a temporary file beside it, synced, then renamed into place.
@@ -356,7 +401,7 @@ Recording read_recording(const std::string& path) {
 }
 
 void write_recording(const std::string& path, const Recording& r) {
-  std::string text = header_line(r) + "\n";
+  std::string text = header_line(r.source) + "\n";
   SampleWriter check(path);
   std::size_t i = 0, j = 0, k = 0;  // next hand, head and motion sample: merged by time
   const double inf = std::numeric_limits<double>::infinity();
@@ -364,52 +409,86 @@ void write_recording(const std::string& path, const Recording& r) {
     const double th = i < r.hands.size() ? r.hands[i].t : inf;
     const double tg = j < r.heads.size() ? r.heads[j].t : inf;
     const double tm = k < r.motion.size() ? r.motion[k].t : inf;
-    OutJson s;
-    if (i < r.hands.size() && !(tg < th) && !(tm < th)) {  // ties: hands, then heads, then motion
-      const HandSample& h = r.hands[i];
-      const std::string where = "hands[" + std::to_string(i++) + "]";
-      check.time(h.t, where);
-      check.pose(h.pose, where);
-      check.unit_interval(h.squeeze, where, "squeeze");
-      check.unit_interval(h.trigger, where, "trigger");
-      s["t"] = h.t;
-      s["type"] = "hand";
-      s["hand"] = h.hand == Hand::Left ? "left" : "right";
-      s["position"] = to_json(h.pose.position);
-      s["orientation"] = to_json(h.pose.orientation);
-      s["squeeze"] = h.squeeze;
-      s["trigger"] = h.trigger;
-      s["buttons"] = OutJson::array();
-      for (const auto& [bit, name] : kButtons)
-        if (h.buttons & bit) s["buttons"].push_back(name);
-      s["mode4d"] = h.mode4d;
-    } else if (j < r.heads.size() && !(tm < tg)) {
-      const HeadSample& g = r.heads[j];
-      const std::string where = "heads[" + std::to_string(j++) + "]";
-      check.time(g.t, where);
-      check.pose(g.pose, where);
-      s["t"] = g.t;
-      s["type"] = "head";
-      s["position"] = to_json(g.pose.position);
-      s["orientation"] = to_json(g.pose.orientation);
-    } else {
-      const MotionSample& m = r.motion[k];
-      const std::string where = "motion[" + std::to_string(k++) + "]";
-      check.time(m.t, where);
-      check.finite(m.acceleration, where, "acceleration");
-      s["t"] = m.t;
-      s["type"] = "motion";
-      s["acceleration"] = to_json(m.acceleration);
-      if (m.has_rotation_rate) {
-        check.finite(m.rotation_rate, where, "rotation_rate");
-        s["rotation_rate"] = to_json(m.rotation_rate);
-      }
-      s["tilt"] = m.tilt;
-    }
-    text += s.dump();
+    if (i < r.hands.size() && !(tg < th) && !(tm < th))  // ties: hands, then heads, then motion
+      text += sample_line(check, r.hands[i], "hands[" + std::to_string(i) + "]"), ++i;
+    else if (j < r.heads.size() && !(tm < tg))
+      text += sample_line(check, r.heads[j], "heads[" + std::to_string(j) + "]"), ++j;
+    else
+      text += sample_line(check, r.motion[k], "motion[" + std::to_string(k) + "]"), ++k;
     text += '\n';
   }
   write_atomically(path, text);
+}
+
+// The streaming writer: the same lines as write_recording, each written with one write(2) and flushed.
+struct RecordingWriter::Impl {
+  std::string path;
+  int fd = -1;
+  SampleWriter check;
+  std::int64_t samples = 0;
+  explicit Impl(const std::string& p) : path(p), check(path) {}
+  void line(const std::string& text) {
+    const std::string out = text + "\n";
+    std::size_t done = 0;
+    while (done < out.size()) {
+      const ssize_t n = ::write(fd, out.data() + done, out.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw Error(path + ": write failed (" + std::strerror(errno) + ")");
+      done += std::size_t(n);
+    }
+  }
+};
+
+RecordingWriter::RecordingWriter(const std::string& path, const std::string& source) : impl_(new Impl(path)) {
+  impl_->fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (impl_->fd < 0) throw Error(path + ": cannot create the recording (" + std::strerror(errno) + ")");
+  impl_->line(header_line(source));
+}
+
+RecordingWriter::~RecordingWriter() {
+  if (impl_->fd >= 0) ::close(impl_->fd);
+}
+
+void RecordingWriter::write(const HandSample& s) {
+  impl_->line(sample_line(impl_->check, s, "hand sample " + std::to_string(impl_->samples + 1)));
+  ++impl_->samples;
+}
+void RecordingWriter::write(const HeadSample& s) {
+  impl_->line(sample_line(impl_->check, s, "head sample " + std::to_string(impl_->samples + 1)));
+  ++impl_->samples;
+}
+void RecordingWriter::write(const MotionSample& s) {
+  impl_->line(sample_line(impl_->check, s, "motion sample " + std::to_string(impl_->samples + 1)));
+  ++impl_->samples;
+}
+
+void RecordingWriter::write_frame(const input::InputFrame& frame) {
+  for (const MotionSample& m : frame.motion) write(m);
+  for (int k = 0; k < input::kHandCount; ++k) {
+    const input::HandInput& in = frame.hands[std::size_t(k)];
+    if (!in.tracked) continue;
+    HandSample s;
+    s.t = frame.t;
+    s.hand = Hand(k);
+    s.pose.position = in.position;
+    s.pose.orientation = in.orientation;
+    s.squeeze = in.squeeze;
+    s.trigger = in.trigger;
+    s.buttons = in.buttons;
+    s.mode4d = in.mode4d;
+    write(s);
+  }
+}
+
+std::int64_t RecordingWriter::samples() const { return impl_->samples; }
+
+void RecordingWriter::close() {
+  if (impl_->fd < 0) return;
+  const bool synced = ::fsync(impl_->fd) == 0;
+  const int err = errno;
+  const bool closed = ::close(impl_->fd) == 0;
+  impl_->fd = -1;
+  if (!synced || !closed) throw Error(impl_->path + ": write failed (" + std::strerror(closed ? err : errno) + ")");
 }
 
 }  // namespace wedge::recordings

@@ -6,7 +6,7 @@
 // before_step runs three named stages: update_gravity, track_hands, grab_and_release, drive_held.
 // Nothing here allocates per step once the event buffers have grown; the core knows nothing of it.
 //
-// Conventions: hands are indexed by int(recordings::Hand) (0 left, 1 right). Events carry `step`, the
+// Conventions: hands are indexed by int(Hand) (0 left, 1 right). Events carry `step`, the
 // index of the step they belong to (a grab or release is applied before step k; a haptic pulse comes
 // from the contact that began during step k), and `t`, that step's start time k h.
 #pragma once

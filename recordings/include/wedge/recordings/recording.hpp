@@ -6,45 +6,25 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "wedge/input/frame.hpp"
+#include "wedge/input/samples.hpp"
+
 namespace wedge::recordings {
 
-enum class Hand : std::uint8_t { Left = 0, Right = 1 };
-
-// Buttons: the Oculus SDK TouchButtons bits (A = 0x1, B = 0x2, X = 0x100, Y = 0x200); other bits are not kept.
-inline constexpr std::uint32_t kButtonA = 0x1, kButtonB = 0x2, kButtonX = 0x100, kButtonY = 0x200;
-
-struct Pose {  // tracking space: metres, OpenXR convention (x right, y up, z toward the user)
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // unit; local -> tracking
-};
-
-struct HandSample {
-  double t = 0.0;  // s on the recording's clock (importers start it at 0)
-  Hand hand = Hand::Right;
-  Pose pose;
-  double squeeze = 0.0;       // [0, 1] grip ("hand trigger")
-  double trigger = 0.0;       // [0, 1] index trigger
-  std::uint32_t buttons = 0;  // kButton* bits
-  bool mode4d = false;        // the recording's own 4D-rotation flag (besides A / X)
-};
-
-struct HeadSample {
-  double t = 0.0;
-  Pose pose;
-};
-
-struct MotionSample {
-  double t = 0.0;
-  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();  // g, device frame (x right, y up, z out of the screen),
-                                   // gravity included and pointing the way it pulls (CoreMotion's sign: a
-                                   // still phone held upright reads (0, -1, 0))
-  bool has_rotation_rate = false;
-  Eigen::Vector3d rotation_rate = Eigen::Vector3d::Zero();  // rad/s, device frame
-  bool tilt = false;  // the paper's gravity-tilt button (tilt toward w)
-};
+// The device sample types are the input layer's (wedge/input/samples.hpp); this library writes and reads them.
+using input::Hand;
+using input::HandSample;
+using input::HeadSample;
+using input::kButtonA;
+using input::kButtonB;
+using input::kButtonX;
+using input::kButtonY;
+using input::MotionSample;
+using input::Pose;
 
 struct Recording {
   std::string source;                 // "quest2-touch", "coremotion", "script", "viewer", ...
@@ -64,6 +44,31 @@ Recording read_recording(const std::string& path);
 // (hands before heads before motion at equal times). Throws wedge::Error on an I/O error, or for a sample
 // the reader would refuse (non-finite, negative or decreasing time, triggers outside [0, 1]).
 void write_recording(const std::string& path, const Recording& r);
+
+// A recording written as it happens (a live session's --record): the header at once, then each sample
+// as one line, written and flushed as it comes, so that a session cut off (Ctrl-C, a crash) leaves every
+// sample it took but at most a torn last line, which read_recording drops with a warning. Samples must
+// come in time order; each is checked as write_recording checks it (throws wedge::Error "PATH: ...").
+class RecordingWriter {
+ public:
+  RecordingWriter(const std::string& path, const std::string& source);  // creates or truncates PATH
+  ~RecordingWriter();
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+
+  void write(const HandSample& s);
+  void write(const HeadSample& s);
+  void write(const MotionSample& s);
+  // A step's input as samples: its accelerometer samples, then each tracked hand at frame.t (replay's
+  // frame_at(t) reads exactly these values back).
+  void write_frame(const input::InputFrame& frame);
+  std::int64_t samples() const;
+  void close();  // syncs and closes; throws wedge::Error on an I/O error
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 Recording import_questset_csv(const std::string& path);    // Quest 2 Touch CSV (questset layout)
 Recording import_coremotion_csv(const std::string& path);  // iPhone CoreMotion CSV (uses read_coremotion_csv)

@@ -1,4 +1,4 @@
-// Recorded device streams as input frames at the simulation's fixed step, so that a replay is a pure
+// Recorded device streams as the input layer's frames at the simulation's fixed step, so that a replay is a pure
 // function of (scene, recordings). The rule, for the frame at time t (docs/input.md):
 //   - a hand's pose is interpolated between its last sample at or before t and the next one (position
 //     linearly, orientation by slerp) when they are at most max_gap apart, else held from the last one;
@@ -17,7 +17,7 @@
 #include "wedge/input/frame.hpp"
 #include "wedge/recordings/recording.hpp"
 
-namespace wedge::input {
+namespace wedge::recordings {
 
 class RecordingSource {
  public:
@@ -25,10 +25,10 @@ class RecordingSource {
 
   // `names` label the recordings in messages (their files). Throws wedge::Error if two recordings carry
   // the same stream.
-  RecordingSource(std::vector<recordings::Recording> recordings, const std::vector<std::string>& names);
+  RecordingSource(std::vector<Recording> recordings, const std::vector<std::string>& names);
 
   // The frame at time t; t must not decrease from one call to the next (throws wedge::Error).
-  const InputFrame& frame_at(double t);
+  const input::InputFrame& frame_at(double t);
 
   double duration() const { return duration_; }  // s, the last sample of any stream
   bool has_hands() const { return !hands_[0].empty() || !hands_[1].empty(); }
@@ -40,15 +40,15 @@ class RecordingSource {
   int source_of_motion() const { return motion_source_; }
 
  private:
-  std::array<std::vector<recordings::HandSample>, kHandCount> hands_;
-  std::vector<recordings::MotionSample> motion_;
-  std::array<std::size_t, kHandCount> cursor_{};  // first sample with time > t (so cursor - 1 is at or before)
+  std::array<std::vector<HandSample>, input::kHandCount> hands_;
+  std::vector<MotionSample> motion_;
+  std::array<std::size_t, input::kHandCount> cursor_{};  // first sample with time > t (so cursor - 1 is at or before)
   std::size_t motion_cursor_ = 0;
-  std::array<int, kHandCount> hand_source_{-1, -1};
+  std::array<int, input::kHandCount> hand_source_{-1, -1};
   int motion_source_ = -1;
   double duration_ = 0.0, last_t_ = -1.0;
   bool uses_mode4d_ = false, uses_tilt_ = false;
-  InputFrame frame_;
+  input::InputFrame frame_;
 };
 
-}  // namespace wedge::input
+}  // namespace wedge::recordings

@@ -1,25 +1,25 @@
 // Resampling recorded streams to step times (recording_source.hpp has the rule).
-#include "wedge/input/recording_source.hpp"
+#include "wedge/recordings/recording_source.hpp"
 
 #include <algorithm>
 
 #include "wedge/error.hpp"
 
-namespace wedge::input {
+namespace wedge::recordings {
 
 namespace {
-bool in_4d_mode(const recordings::HandSample& s) {
-  const std::uint32_t own = s.hand == Hand::Right ? recordings::kButtonA : recordings::kButtonX;
+bool in_4d_mode(const HandSample& s) {
+  const std::uint32_t own = s.hand == Hand::Right ? kButtonA : kButtonX;
   return s.mode4d || (s.buttons & own) != 0;
 }
 }  // namespace
 
-RecordingSource::RecordingSource(std::vector<recordings::Recording> recs, const std::vector<std::string>& names) {
+RecordingSource::RecordingSource(std::vector<Recording> recs, const std::vector<std::string>& names) {
   auto label = [&](std::size_t i) { return i < names.size() ? names[i] : "recording " + std::to_string(i + 1); };
   for (std::size_t r = 0; r < recs.size(); ++r) {
-    recordings::Recording& rec = recs[r];
+    Recording& rec = recs[r];
     duration_ = std::max(duration_, rec.duration());
-    for (int k = 0; k < kHandCount; ++k) {
+    for (int k = 0; k < input::kHandCount; ++k) {
       const bool has = std::any_of(rec.hands.begin(), rec.hands.end(), [k](const auto& s) { return int(s.hand) == k; });
       if (!has) continue;
       if (hand_source_[k] >= 0)
@@ -34,35 +34,36 @@ RecordingSource::RecordingSource(std::vector<recordings::Recording> recs, const 
       motion_source_ = int(r);
       motion_ = std::move(rec.motion);
     }
-    for (const recordings::HandSample& s : rec.hands) {
+    for (const HandSample& s : rec.hands) {
       hands_[int(s.hand)].push_back(s);
       uses_mode4d_ = uses_mode4d_ || in_4d_mode(s);
     }
   }
-  for (const recordings::MotionSample& m : motion_) uses_tilt_ = uses_tilt_ || m.tilt;
+  for (const MotionSample& m : motion_) uses_tilt_ = uses_tilt_ || m.tilt;
 }
 
-const InputFrame& RecordingSource::frame_at(double t) {
+const input::InputFrame& RecordingSource::frame_at(double t) {
   if (!(t >= last_t_)) throw Error("RecordingSource: frames must be asked for in time order");
   frame_.t = t;
-  for (int k = 0; k < kHandCount; ++k) {
-    const std::vector<recordings::HandSample>& s = hands_[k];
+  for (int k = 0; k < input::kHandCount; ++k) {
+    const std::vector<HandSample>& s = hands_[k];
     std::size_t& c = cursor_[k];
     while (c < s.size() && s[c].t <= t) ++c;
-    HandInput& in = frame_.hands[k];
+    input::HandInput& in = frame_.hands[k];
     if (c == 0) {
-      in = HandInput{};
+      in = input::HandInput{};
       continue;
     }
-    const recordings::HandSample& a = s[c - 1];
+    const HandSample& a = s[c - 1];
     in.tracked = true;
     in.position = a.pose.position;
     in.orientation = a.pose.orientation;
     in.squeeze = a.squeeze;
     in.trigger = a.trigger;
+    in.buttons = a.buttons;
     in.mode4d = in_4d_mode(a);
     if (c < s.size() && s[c].t - a.t <= kMaxGap && s[c].t > a.t) {
-      const recordings::HandSample& b = s[c];
+      const HandSample& b = s[c];
       const double u = (t - a.t) / (b.t - a.t);
       in.position = a.pose.position + u * (b.pose.position - a.pose.position);
       in.orientation = a.pose.orientation.slerp(u, b.pose.orientation);
@@ -70,9 +71,9 @@ const InputFrame& RecordingSource::frame_at(double t) {
   }
   const std::size_t first = motion_cursor_;
   while (motion_cursor_ < motion_.size() && motion_[motion_cursor_].t <= t) ++motion_cursor_;
-  frame_.motion = std::span<const recordings::MotionSample>(motion_.data() + first, motion_cursor_ - first);
+  frame_.motion = std::span<const MotionSample>(motion_.data() + first, motion_cursor_ - first);
   last_t_ = t;
   return frame_;
 }
 
-}  // namespace wedge::input
+}  // namespace wedge::recordings
