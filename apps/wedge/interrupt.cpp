@@ -25,6 +25,8 @@ void install_interrupt_handlers() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
 }
 
+int interrupt_signal() { return int(g_signal); }
+
 void throw_if_interrupted() {
   if (g_signal != 0) throw Interrupted(int(g_signal));
 }

@@ -20,5 +20,7 @@ class Interrupted : public std::runtime_error {
 void install_interrupt_handlers();
 // Throws Interrupted once a signal has arrived.
 void throw_if_interrupted();
+// The signal that arrived (SIGINT, SIGTERM, SIGHUP), or 0: for loops that end cleanly on one (wedge xr).
+int interrupt_signal();
 
 }  // namespace wedge::cli

@@ -38,10 +38,15 @@ int main(int argc, char** argv) {
   CLI::App* import_cmd = add_import_verb(app, import_options);
   CLI::App* replay_cmd = add_replay_verb(app, replay);
   CLI::App* view_cmd = add_view_verb(app, view);
+#ifdef WEDGE_HAVE_XR
+  XrOptions xr;
+  CLI::App* xr_cmd = add_xr_verb(app, xr);
+#endif
 
   // The verb comes first. Name an unknown one (CLI11 would only say that a subcommand is required), and
   // take `wedge help [VERB]` as the --help it means.
-  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice", "import", "replay", "view"};
+  const std::vector<std::string> verbs = {"inertia", "simulate", "collide", "render", "slice",
+                                          "import",  "replay",   "view",    "xr"};
   std::vector<std::string> args(argv + 1, argv + argc);
   if (!args.empty() && args[0] == "help") {
     if (args.size() == 1) {
@@ -50,10 +55,16 @@ int main(int argc, char** argv) {
     }
     args = {args[1], "--help"};
   }
+#ifndef WEDGE_HAVE_XR
+  if (!args.empty() && args[0] == "xr") {
+    std::cerr << "wedge: this build has no 'xr' verb: it was built without the OpenXR SDK (Debian: libopenxr-dev)\n";
+    return kExitBadInput;
+  }
+#endif
   if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
       std::find(verbs.begin(), verbs.end(), args[0]) == verbs.end()) {
     std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render, "
-              << "slice, import, replay and view)\nRun 'wedge --help' for usage.\n";
+              << "slice, import, replay, view and xr)\nRun 'wedge --help' for usage.\n";
     return kExitBadInput;
   }
 
@@ -81,6 +92,9 @@ int main(int argc, char** argv) {
     if (import_cmd->parsed()) return run_import(import_options);
     if (replay_cmd->parsed()) return run_replay(replay);
     if (view_cmd->parsed()) return run_view(view);
+#ifdef WEDGE_HAVE_XR
+    if (xr_cmd->parsed()) return run_xr(xr);
+#endif
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
   } catch (const Interrupted& e) {

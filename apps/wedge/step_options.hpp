@@ -119,16 +119,22 @@ std::string fastest_body(const World<N>& world) {
   return "the fastest body is '" + world.name(BodyId{std::uint32_t(best)}) + "' at " + text;
 }
 
-// Steps once (after a check for Ctrl-C) and throws Failure naming the body and the quantity if a state became non-finite.
+// Steps once and throws Failure naming the body and the quantity if a state became non-finite.
 template <int N>
-void checked_step(World<N>& world, double h, const std::string& scene) {
-  throw_if_interrupted();  // Ctrl-C: unwind, removing partial output
+void step_checking_finite(World<N>& world, double h, const std::string& scene) {
   world.step(h);
   const auto [bad, what] = first_non_finite_state(world);
   if (bad >= 0)
     throw Failure(scene + ": the simulation produced a non-finite " + what + " of body '" +
                   world.name(BodyId{std::uint32_t(bad)}) + "' at step " + std::to_string(world.step_count()) +
                   " (are the step size or the initial speeds too large?)");
+}
+
+// The same after a check for Ctrl-C (which unwinds, removing partial output).
+template <int N>
+void checked_step(World<N>& world, double h, const std::string& scene) {
+  throw_if_interrupted();
+  step_checking_finite(world, h, scene);
 }
 
 }  // namespace wedge::cli
