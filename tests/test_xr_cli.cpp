@@ -1,0 +1,224 @@
+// `wedge xr` as a user runs it without a headset: headless, through the real OpenXR loader (Debian's
+// libopenxr-loader1), on Wedge's replay runtime (xr/runtime) playing a shipped recording as an Oculus
+// Touch pair. What it is held to is `wedge replay` of the same file, which reads the recording directly
+// and shares no OpenXR code: the same grabs and releases at the same steps, the haptic calls the runtime
+// logged are replay's pulses (hands and order; amplitudes within 1e-3, the runtime logging the float that
+// OpenXR carries), and the bodies where replay leaves them within 1e-6 m for as long as the hands drive
+// them. The two paths sample differently in two places only: XrTime is integer nanoseconds (a step at
+// k h is located at X0 + round(k h 1e9)), and XrPosef is 32-bit float (6e-8 m at 1 m). A session's own
+// --record, replayed, ends in exactly the hash it printed. Failures (no runtime, a refused system or
+// session, an unreadable recording) are one clear line and exit 2 within seconds; Ctrl-C ends the session
+// with its files whole; Khronos's core validation layer reports nothing.
+#ifdef WEDGE_XR_MANIFEST
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+
+#include "cli_runner.hpp"
+#include "wedge/recordings/recording.hpp"
+
+using namespace cli_runner;
+
+namespace {
+
+const fs::path kRoot = WEDGE_SOURCE_DIR;
+
+std::vector<json> read_lines(const fs::path& p) {
+  std::vector<json> v;
+  std::istringstream in(read_file(p));
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) v.push_back(json::parse(line));
+  return v;
+}
+
+double distance(const json& a, const json& b) {
+  double s = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += std::pow(a[i].get<double>() - b[i].get<double>(), 2);
+  return std::sqrt(s);
+}
+
+// The environment that puts the replay runtime behind the loader, playing `recording`.
+std::string runtime_env(const std::string& recording) {
+  return "XR_RUNTIME_JSON=" WEDGE_XR_MANIFEST " WEDGE_XR_REPLAY=" + (kRoot / recording).string() +
+         " WEDGE_XR_HAPTICS_LOG=haptics.jsonl";
+}
+
+struct Run {
+  Result result;
+  std::vector<json> states, events, haptics;
+  std::string hash;  // printed on stdout
+};
+
+Run run_xr(const TempDir& dir, const std::string& scene, const std::string& recording, const std::string& extra = "") {
+  Run r;
+  r.result = dir.shell(runtime_env(recording) + " $WEDGE xr " + (kRoot / scene).string() +
+                       " --headless --hash --out xr_states.jsonl --events xr_events.jsonl --record xr_session.jsonl " +
+                       extra);
+  if (r.result.code != 0) return r;
+  r.states = read_lines(dir.path() / "xr_states.jsonl");
+  r.events = read_lines(dir.path() / "xr_events.jsonl");
+  r.haptics = read_lines(dir.path() / "haptics.jsonl");
+  const std::size_t at = r.result.out.find("state hash ");
+  if (at != std::string::npos) r.hash = r.result.out.substr(at + 11, 16);
+  return r;
+}
+
+struct Case {
+  const char* scene;
+  const char* recording;
+  bool driven_throughout;  // no impact amplifies the float poses' rounding (see below)
+};
+
+}  // namespace
+
+TEST_CASE("wedge xr: headless over the replay runtime does what wedge replay does, and its recording replays to its hash",
+          "[cli][xr]") {
+  const Case cases[] = {{"scenes/toy_table_4d.json", "recordings/scripted/toy_table_grab.jsonl", false},
+                        {"scenes/fig3_dominoes_4d.json", "recordings/scripted/dominoes_push.jsonl", false},
+                        {"scenes/toy_table_4d.json", "recordings/quest2/sample_movement.jsonl", true}};
+  for (const Case& c : cases) {
+    INFO(c.recording);
+    TempDir dir;
+    const Run xr = run_xr(dir, c.scene, c.recording);
+    INFO(xr.result.err);
+    REQUIRE(xr.result.code == 0);
+    CHECK(xr.result.out.find("xr session on 'Wedge replay runtime' (headless)") != std::string::npos);
+    CHECK(xr.result.out.find("ended: the runtime ended the session") != std::string::npos);  // the recording ran out
+    REQUIRE(xr.hash.size() == 16);
+    CHECK(xr.states.back()["state_hash"] == xr.hash);
+    const double end = xr.states[xr.states.size() - 2]["time"].get<double>();
+
+    // The same recording through `wedge replay`, to the same time.
+    const Result rp = dir.run("replay " + (kRoot / c.scene).string() + " " + (kRoot / c.recording).string() +
+                              " --out replay_states.jsonl --events replay_events.jsonl --until " + std::to_string(end));
+    REQUIRE(rp.code == 0);
+    const std::vector<json> states = read_lines(dir.path() / "replay_states.jsonl");
+    const std::vector<json> events = read_lines(dir.path() / "replay_events.jsonl");
+
+    // Grabs and releases: the same, at the same steps.
+    std::vector<json> grabs_xr, grabs_rp, pulses;
+    for (const json& e : xr.events)
+      if (e["type"] != "haptic") grabs_xr.push_back(e);
+    for (const json& e : events) (e["type"] == "haptic" ? pulses : grabs_rp).push_back(e);
+    REQUIRE(grabs_xr.size() == grabs_rp.size());
+    CHECK(grabs_rp.size() >= 2);  // every shipped session grabs and lets go
+    for (std::size_t i = 0; i < grabs_rp.size(); ++i) {
+      CHECK(grabs_xr[i]["type"] == grabs_rp[i]["type"]);
+      CHECK(grabs_xr[i]["step"] == grabs_rp[i]["step"]);
+      CHECK(grabs_xr[i]["body"] == grabs_rp[i]["body"]);
+    }
+    // Haptics: the runtime's log of xrApplyHapticFeedback is replay's pulse list. Each call was made in
+    // the frame whose display time first covered the pulse's step: within one 90 Hz frame after it.
+    std::vector<json> applied;
+    for (const json& h : xr.haptics)
+      if (h["call"] == "apply") applied.push_back(h);
+    REQUIRE(applied.size() == pulses.size());
+    for (std::size_t i = 0; i < pulses.size(); ++i) {
+      CHECK(applied[i]["hand"] == "/user/hand/" + pulses[i]["hand"].get<std::string>());
+      CHECK(applied[i]["amplitude"].get<double>() == Approx(pulses[i]["amplitude"].get<double>()).margin(1e-3));
+      CHECK(applied[i]["duration_ns"].get<std::int64_t>() == 30'000'000);
+      const double t = applied[i]["t"].get<double>(), step_t = pulses[i]["t"].get<double>();
+      CHECK(t >= step_t - 1e-9);
+      CHECK(t < step_t + 1.0 / 90.0 + 1.0 / 120.0);
+    }
+
+    // The bodies: within 1e-6 m of replay's while the hands drive them (float poses round to 6e-8 m at
+    // 1 m). A hard impact or a throw amplifies that rounding as any 1e-8 m change would (a tumbling body
+    // is chaotic), so the scripted sessions are compared up to their first haptic pulse, the Quest stream
+    // (no impact) throughout.
+    std::int64_t limit = states.back()["step"].get<std::int64_t>();
+    if (!c.driven_throughout && !pulses.empty()) limit = pulses.front()["step"].get<std::int64_t>();
+    double worst = 0.0;
+    std::size_t compared = 0;
+    for (std::size_t i = 0; i < std::min(states.size(), xr.states.size() - 1); ++i) {
+      REQUIRE(states[i]["step"] == xr.states[i]["step"]);
+      if (states[i]["step"].get<std::int64_t>() > limit) break;
+      for (std::size_t b = 0; b < states[i]["bodies"].size(); ++b)
+        worst = std::max(worst, distance(states[i]["bodies"][b]["center"], xr.states[i]["bodies"][b]["center"]));
+      ++compared;
+    }
+    INFO("compared " << compared << " states to step " << limit << ": max |x_xr - x_replay| = " << worst << " m");
+    CHECK(compared > 200);
+    CHECK(worst < 1e-6);
+
+    // The session's own recording: one sample per step of each tracked hand; replayed, the printed hash.
+    const wedge::recordings::Recording rec = wedge::recordings::read_recording((dir.path() / "xr_session.jsonl").string());
+    CHECK(rec.source == "xr");
+    CHECK(rec.warnings.empty());
+    CHECK(rec.hands.size() >= states.size() - 2);
+    const Result again = dir.run("replay " + (kRoot / c.scene).string() + " xr_session.jsonl --every 1000000 --hash --until " +
+                                 std::to_string(end));
+    REQUIRE(again.code == 0);
+    CHECK(again.lines().back()["state_hash"] == xr.hash);
+  }
+}
+
+TEST_CASE("wedge xr: no runtime, a refused system or session, an unreadable recording: one line, exit 2, no output",
+          "[cli][xr]") {
+  TempDir dir;
+  const std::string scene = (kRoot / "scenes/toy_table_4d.json").string();
+  struct Failure {
+    std::string env, expect;
+  };
+  const Failure failures[] = {
+      {"XR_RUNTIME_JSON=/nonexistent/runtime.json", "no OpenXR runtime (XR_ERROR_RUNTIME_UNAVAILABLE): "
+                                                    "XR_RUNTIME_JSON=/nonexistent/runtime.json names no loadable"},
+      {"XR_RUNTIME_JSON= HOME=/nonexistent XDG_CONFIG_HOME= XDG_CONFIG_DIRS=/nonexistent",
+       "XR_RUNTIME_JSON is not set and there is no active runtime (looked for /nonexistent/.config/openxr/1/"
+       "active_runtime.json, /nonexistent/openxr/1/active_runtime.json, /etc/openxr/1/active_runtime.json)"},
+      {runtime_env("recordings/scripted/toy_table_grab.jsonl") + " WEDGE_XR_REFUSE=system", "has no headset connected"},
+      {runtime_env("recordings/scripted/toy_table_grab.jsonl") + " WEDGE_XR_REFUSE=session",
+       "xrCreateSession: XR_ERROR_RUNTIME_FAILURE"},
+      {runtime_env("recordings/no_such_recording.jsonl"), "xrCreateInstance: XR_ERROR_RUNTIME_FAILURE"},
+  };
+  for (const Failure& f : failures) {
+    INFO(f.env);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Result r = dir.shell("env " + f.env + " timeout 20 $WEDGE xr " + scene +
+                               " --headless --out states.jsonl --record session.jsonl");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(seconds < 10.0);
+    CHECK(r.err.find("wedge: " + scene + ": ") != std::string::npos);
+    CHECK(r.err.find(f.expect) != std::string::npos);
+    CHECK(!fs::exists(dir.path() / "states.jsonl"));
+  }
+  // The unreadable recording is named by the runtime (its own line), and the app's line follows.
+  const Result r = dir.shell(runtime_env("recordings/no_such_recording.jsonl") + " $WEDGE xr " + scene + " --headless");
+  CHECK(r.err.find("no_such_recording.jsonl") != std::string::npos);
+}
+
+TEST_CASE("wedge xr: Ctrl-C ends the session cleanly, every file whole", "[cli][xr]") {
+  TempDir dir;
+  // With no recording to play the runtime never ends the session: only the signal does.
+  const Result r = dir.shell("XR_RUNTIME_JSON=" WEDGE_XR_MANIFEST " $WEDGE xr " + (kRoot / "scenes/toy_table_4d.json").string() +
+                             " --headless --hash --every 1000 --out states.jsonl --record session.jsonl & "
+                             "sleep 1; kill -INT $!; wait $!");
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.find("interrupted (SIGINT): ending the session") != std::string::npos);
+  CHECK(r.out.find("ended: exit requested") != std::string::npos);
+  const std::vector<json> states = read_lines(dir.path() / "states.jsonl");
+  REQUIRE(states.size() >= 2);
+  CHECK(states.back().contains("state_hash"));
+  const wedge::recordings::Recording rec = wedge::recordings::read_recording((dir.path() / "session.jsonl").string());
+  CHECK(rec.warnings.empty());  // no torn line
+  CHECK(!rec.heads.empty());
+}
+
+TEST_CASE("wedge xr: Khronos's core validation layer, loaded, reports nothing", "[cli][xr]") {
+  TempDir dir;
+  const Result r = dir.shell(runtime_env("recordings/scripted/toy_table_grab.jsonl") +
+                             " XR_ENABLE_API_LAYERS=XR_APILAYER_LUNARG_core_validation XR_CORE_VALIDATION_EXPORT_TYPE=text"
+                             " XR_CORE_VALIDATION_FILE_NAME=validation.txt XR_LOADER_DEBUG=info $WEDGE xr " +
+                             (kRoot / "scenes/toy_table_4d.json").string() + " --headless");
+  INFO(r.out + r.err);
+  REQUIRE(r.code == 0);
+  CHECK((r.out + r.err).find("succeeded loading layer XR_APILAYER_LUNARG_core_validation") != std::string::npos);
+  const std::string report = fs::exists(dir.path() / "validation.txt") ? read_file(dir.path() / "validation.txt") : "";
+  CHECK(report == "");
+}
+
+#endif  // WEDGE_XR_MANIFEST
