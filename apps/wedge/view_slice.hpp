@@ -1,0 +1,175 @@
+// The viewer's slice (`wedge view`: slicing and drawing): the world cut by the viewed 3-flat into one mesh per
+// bounded body (slicing::WorldSlices), the frame the renderer draws of it right of the panel, as `wedge
+// render --size (W-316)xH` draws its picture, and the markers over the bodies (view_overlays.hpp): hands,
+// haptic flashes, contacts.
+#pragma once
+
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene_frame.hpp"
+#include "scene_slices.hpp"
+#include "view_mouse.hpp"
+#include "view_overlays.hpp"
+#include "view_platform.hpp"
+#include "view_session.hpp"
+#include "wedge/input/interaction.hpp"
+#include "wedge/render/renderer.hpp"
+#include "wedge/slicing/pick.hpp"
+
+namespace wedge::cli::viewer {
+
+template <int N>
+class SliceView {
+ public:
+  // The slice at offsets `w` (missing ones 0) of the world as it starts, the camera fitted to it in the
+  // view beside the panel of a width x height window, and the sizes the sliders and markers take from it.
+  // Round shapes are cut at two levels: `subdivisions` when still, `play_subdivisions` while the scene plays.
+  SliceView(const Scene<N>& scene, const World<N>& world, const std::vector<double>& w, int subdivisions,
+            int play_subdivisions, const std::string& file, int width, int height)
+      : offsets_(padded(w)), slices_(scene_slices<N>(world, offsets_, subdivisions, file, play_subdivisions)) {
+    slices_.slice(world, meshes_);
+    std::vector<Eigen::Vector3d> corners;
+    add_box_corners(meshes_, corners);
+    // The camera is fitted to the view beside the panel, as `wedge render --size (W-316)xH` fits its picture.
+    fitted_ = fitted_frame(scene, world, slices_, corners, width - kViewLeft, height);
+    // The w sliders' range: every body's hidden coordinates, with room around them.
+    for (int i = 0; i < world.body_count(); ++i)
+      for (int a = 3; a < N; ++a)
+        reach_ = std::max(reach_, std::abs(world.body(BodyId{std::uint32_t(i)}).center[a]) + 1.0);
+    // Contact marks scale with the bodies: a twentieth of the median bounding radius (5 cm for a unit tesseract).
+    mark_ = [&] {
+      std::vector<double> r;
+      for (const auto& e : slices_.entries()) r.push_back(e.radius);
+      if (r.empty()) return 0.05;
+      std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
+      return 0.05 * r[r.size() / 2];
+    }();
+  }
+
+  const slicing::WorldSlices<N>& slices() const { return slices_; }
+  const std::vector<double>& offsets() const { return offsets_; }  // x_{n-1} first, then x_{n-2} within it
+  const render::FrameDesc& fitted() const { return fitted_; }
+  double reach() const { return reach_; }  // m: the sliders' range, +-
+  // The body of mesh k, and whether the slice meets it.
+  BodyId body(std::size_t k) const { return BodyId{std::uint32_t(slices_.entries()[k].body)}; }
+  std::size_t body_count() const { return meshes_.size(); }
+  bool in_slice(std::size_t k) const { return !meshes_[k].empty(); }
+  int in_slice_count() const { return in_slice_; }
+
+  // The bounded body named `name`, if there is one.
+  std::optional<BodyId> body_named(const World<N>& world, const std::string& name) const {
+    for (const auto& e : slices_.entries())
+      if (world.name(BodyId{std::uint32_t(e.body)}) == name) return BodyId{std::uint32_t(e.body)};
+    return std::nullopt;
+  }
+
+  // The slice moved to the sliders' offsets.
+  void set_offsets(const std::vector<float>& w) {
+    for (std::size_t i = 0; i < w.size(); ++i) offsets_[i] = w[i];
+    slices_.set_offsets(offsets_);
+  }
+
+  // The world's current state cut at `detail`.
+  void slice(const World<N>& world, slicing::Detail detail) { slices_.slice(world, meshes_, detail); }
+
+  // The nearest body along `ray` in the current cut.
+  std::optional<slicing::Pick> pick(const Ray& ray) const { return slicing::pick(meshes_, ray.origin, ray.direction); }
+
+  // The frame of the current cut seen by `camera`: the fitted frame's ground and light, each body's
+  // slice in its colour (the scene's, else the palette's), the bodies in the slice counted.
+  render::FrameDesc frame(const Scene<N>& scene, const render::Camera& camera) {
+    render::FrameDesc desc = fitted_;
+    desc.camera = camera;
+    in_slice_ = 0;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      const SceneBody<N>& sb = scene.bodies[std::size_t(slices_.entries()[k].body)];
+      render::Color color = render::palette_color(int(k));
+      if (sb.color) color = {float((*sb.color)[0]), float((*sb.color)[1]), float((*sb.color)[2])};
+      desc.meshes.push_back({&meshes_[k], color});
+      in_slice_ += !meshes_[k].empty();
+    }
+    return desc;
+  }
+
+  // Markers: the hands (recorded ones, or the mouse while it holds: left cyan, right magenta) and, for
+  // a quarter second after a haptic pulse, yellow at its contact point and on the hand's marker, grown
+  // by half: a mouse and a screen cannot feel them. Optionally the contacts: orange points, dark normals.
+  // They are added to `desc` as overlays; the meshes live until the next frame's markers.
+  void add_markers(render::FrameDesc& desc, const World<N>& world, const input::Interaction<N>* recorded,
+                   const MouseHand& hand, PulseDisplay<N>& pulses, bool show_contacts) {
+    markers_.clear();
+    marker_colors_.clear();
+    mark_hands(world, recorded, hand, pulses);
+    if (show_contacts) mark_contacts(world);
+    for (std::size_t k = 0; k < markers_.size(); ++k) desc.meshes.push_back({&markers_[k], marker_colors_[k], true});
+  }
+
+  // Clears the window and draws `desc` in the view right of the panel (window px `width` wide; the
+  // framebuffer's px, fb_width x fb_height, may differ).
+  void draw(render::Renderer& renderer, const render::FrameDesc& desc, int width, int fb_width, int fb_height) const {
+    glViewport(0, 0, fb_width, fb_height);
+    glClearColor(desc.background[0], desc.background[1], desc.background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    const int left = std::min(kViewLeft * fb_width / width, fb_width - 1);  // (framebuffer px may differ)
+    renderer.draw(desc, fb_width - left, fb_height, left, 0);
+  }
+
+ private:
+  // The offsets given, missing ones 0.
+  static std::vector<double> padded(std::vector<double> w) {
+    w.resize(std::size_t(std::max(N - 3, 0)), 0.0);
+    return w;
+  }
+
+  void add_marker(slicing::DisplayMesh<3> m, render::Color c) {
+    markers_.push_back(std::move(m));
+    marker_colors_.push_back(c);
+  }
+
+  // The hands, and the flashes of the pulses still shown (those run out are dropped).
+  void mark_hands(const World<N>& world, const input::Interaction<N>* recorded, const MouseHand& hand,
+                  PulseDisplay<N>& pulses) {
+    const render::Color kFlash{1.0f, 0.85f, 0.0f};
+    std::erase_if(pulses.flashes, [&](const auto& f) { return f.second <= world.time(); });
+    for (int k = 0; k < input::kHandCount; ++k) {
+      std::optional<Eigen::Vector3d> at;
+      if (recorded && recorded->tracked(k)) at = slices_.to_slice_point(recorded->hand_point(k));
+      if (!recorded && k == 1 && hand.holding) at = hand.point;
+      if (!at) continue;
+      const bool flash = pulses.hand_flash[std::size_t(k)] > world.time();
+      add_marker(marker_cube(*at, flash ? 0.06 : 0.04),
+                 flash ? kFlash : (k == 0 ? render::Color{0.0f, 0.9f, 0.9f} : render::Color{1.0f, 0.1f, 0.8f}));
+    }
+    for (const auto& f : pulses.flashes) add_marker(marker_cube(slices_.to_slice_point(f.first), 0.05), kFlash);
+  }
+
+  // The contacts of the last step that the slice shows (contact_marks), sized by `mark_`.
+  void mark_contacts(const World<N>& world) {
+    std::vector<bool> in(meshes_.size());
+    for (std::size_t k = 0; k < meshes_.size(); ++k) in[k] = !meshes_[k].empty();
+    const ContactMarks contacts = contact_marks(world, slices_, in);
+    for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 8 * mark_, 0.3 * mark_), {0.1f, 0.1f, 0.3f});
+    for (const Eigen::Vector3d& p : contacts.points) add_marker(marker_cube(p, mark_), {1.0f, 0.2f, 0.0f});
+  }
+
+  std::vector<double> offsets_;  // the slice offsets, N-3 of them
+  slicing::WorldSlices<N> slices_;
+  std::vector<slicing::DisplayMesh<3>> meshes_;  // the current cut, one per bounded body (entries() order)
+  render::FrameDesc fitted_;                     // ground, light and the camera fitted at the start
+  double reach_ = 1.0;                           // m
+  double mark_ = 0.05;                           // m: the half size of a contact point's cube
+  int in_slice_ = 0;                             // bodies the current cut meets
+  std::vector<slicing::DisplayMesh<3>> markers_;
+  std::vector<render::Color> marker_colors_;
+};
+
+}  // namespace wedge::cli::viewer
