@@ -322,3 +322,25 @@ TEST_CASE("downscale_rgba and write_png reject bad sizes", "[renderer][sheet]") 
   CHECK(downscale_rgba(px, 4, 4, 3, 1) == std::vector<std::uint8_t>(3 * 4, 7));
   CHECK_THROWS_AS(write_png("/nonexistent-folder/x.png", px, 4, 4), wedge::Error);
 }
+
+TEST_CASE("Camera: a headset eye's asymmetric frustum puts its four edge directions on the clip box's edges",
+          "[renderer]") {
+  render::Camera c;
+  c.eye = Eigen::Vector3d(0.3, 1.6, 0.2);
+  c.target = c.eye + Eigen::Vector3d(0, 0, -1);  // looking down -z, y up: view axes = world axes
+  const double left = std::tan(-0.8), right = std::tan(0.7), down = std::tan(-0.9), up = std::tan(0.6);
+  c.frustum = std::array<double, 4>{left, right, down, up};
+  const Eigen::Matrix4d m = c.projection(123.0) * c.view();  // (the aspect is ignored with a frustum)
+  auto ndc = [&](double tx, double ty, double depth) {
+    const Eigen::Vector4d p = m * Eigen::Vector4d(c.eye.x() + tx * depth, c.eye.y() + ty * depth, c.eye.z() - depth, 1.0);
+    return Eigen::Vector3d(p.x() / p.w(), p.y() / p.w(), p.z() / p.w());
+  };
+  for (double depth : {0.5, 3.0, 40.0}) {
+    CHECK(ndc(left, 0.0, depth).x() == Approx(-1.0));
+    CHECK(ndc(right, 0.0, depth).x() == Approx(1.0));
+    CHECK(ndc(0.0, down, depth).y() == Approx(-1.0));
+    CHECK(ndc(0.0, up, depth).y() == Approx(1.0));
+  }
+  CHECK(ndc(0, 0, c.near_plane).z() == Approx(-1.0));
+  CHECK(ndc(0, 0, c.far_plane).z() == Approx(1.0));
+}

@@ -82,6 +82,14 @@ Interaction<N>::Interaction(World<N>& world, const InteractionSettings<N>& s) : 
 }
 
 template <int N>
+void Interaction<N>::set_tracking_origin(const Vec<N>& origin) {
+  if (!origin.allFinite()) throw Error("set_tracking_origin: the origin must be finite");
+  const Vec<N> change = origin - settings_.tracking.origin;
+  settings_.tracking.origin = origin;
+  for (HandState& hs : hands_) hs.point += change;  // (the next frame's difference is the hand's own motion)
+}
+
+template <int N>
 std::optional<BodyId> Interaction<N>::held(int hand) const {
   return hands_[hand].holding ? std::optional<BodyId>(hands_[hand].body) : std::nullopt;
 }

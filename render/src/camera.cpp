@@ -32,6 +32,15 @@ Eigen::Matrix4d Camera::projection(double aspect) const {
     p(2, 2) = -2 / (f - n);
     p(2, 3) = -(f + n) / (f - n);
     p(3, 3) = 1;
+  } else if (frustum) {  // glFrustum with l, r, b, t = n times the tangents
+    const auto [l, r, b, t] = *frustum;
+    p(0, 0) = 2 / (r - l);
+    p(0, 2) = (r + l) / (r - l);
+    p(1, 1) = 2 / (t - b);
+    p(1, 2) = (t + b) / (t - b);
+    p(2, 2) = -(f + n) / (f - n);
+    p(2, 3) = -2 * f * n / (f - n);
+    p(3, 2) = -1;
   } else {
     const double t = 1.0 / std::tan(fov_y_degrees * M_PI / 360.0);
     p(0, 0) = t / aspect;

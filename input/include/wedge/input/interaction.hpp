@@ -88,6 +88,11 @@ class Interaction {
   // Reads the step's contact begin events into haptic pulses.
   void after_step();
 
+  // Moves the tracking space's origin (m, world), as moving the slice along w does when the hands follow
+  // it: a hand keeps its tracking coordinates, so its world point moves by the change, and the change is
+  // not taken for a motion (no velocity from it). A held body is pulled along by its grab spring.
+  void set_tracking_origin(const Vec<N>& origin);
+
   // What the last before_step / after_step produced (cleared at each call; no allocation once grown).
   const std::vector<InteractionEvent<N>>& events() const { return events_; }
   const std::vector<HapticPulse<N>>& pulses() const { return pulses_; }

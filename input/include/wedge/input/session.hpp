@@ -74,6 +74,8 @@ class Session {
   void clear_output();
 
   const Interaction<N>& interaction() const { return interaction_; }
+  // Moves the tracking space between steps (Interaction::set_tracking_origin).
+  void set_tracking_origin(const Vec<N>& origin) { interaction_.set_tracking_origin(origin); }
   World<N>& world() { return world_; }
   const World<N>& world() const { return world_; }
 

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <optional>
 
 namespace wedge::render {
 
@@ -14,6 +16,9 @@ struct Camera {
   bool orthographic = false;
   double ortho_height = 4.0;            // m, visible height when orthographic
   double near_plane = 0.05, far_plane = 200.0;  // m
+  // A headset eye's asymmetric frustum (OpenXR's XrFovf): the tangents of its angles left, right, down
+  // and up of the view axis (left and down negative). When set, they replace fov_y_degrees and the aspect.
+  std::optional<std::array<double, 4>> frustum;
 
   Eigen::Matrix4d view() const;
   Eigen::Matrix4d projection(double aspect) const;  // aspect = width / height
