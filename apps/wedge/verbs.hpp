@@ -93,10 +93,10 @@ CLI::App* add_view_verb(CLI::App& app, ViewOptions& options);
 int run_view(const ViewOptions& options);
 
 // wedge xr SCENE.json [--headless] [--record FILE] [--out FILE] [--every K] [--events FILE] [--hash]
-//                     [--until T]  (built with the OpenXR SDK: WEDGE_HAVE_XR)
+//                     [--w W] [--subdivisions S] [--until T]  (built with the OpenXR SDK: WEDGE_HAVE_XR)
 struct XrOptions {
   std::string scene;
-  std::string record, out, events, every, until;
+  std::string record, out, events, every, until, w, subdivisions;
   bool headless = false, hash = false;
 };
 CLI::App* add_xr_verb(CLI::App& app, XrOptions& options);

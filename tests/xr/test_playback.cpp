@@ -73,8 +73,9 @@ TEST_CASE("xr runtime: grip poses are the recorded hand poses, blended between s
   HeadlessSession session(instance);
   const TouchActions t = make_touch_actions(instance);
   attach(session.get(), t.set);
-  const XrSpace stage = session.reference_space(XR_REFERENCE_SPACE_TYPE_STAGE);
-  const XrSpace local = session.reference_space(XR_REFERENCE_SPACE_TYPE_LOCAL);
+  // The recording's frame is LOCAL; STAGE's origin is on the floor 1.6 m below it (kStageDepth).
+  const XrSpace stage = session.reference_space(XR_REFERENCE_SPACE_TYPE_LOCAL);
+  const XrSpace floor = session.reference_space(XR_REFERENCE_SPACE_TYPE_STAGE);
   const XrSpace grip = action_space(session.get(), t.grip, t.right);
   const XrSpace left = action_space(session.get(), t.grip, t.left);
   // Before any xrSyncActions the pose action is inactive: nothing is located.
@@ -91,7 +92,9 @@ TEST_CASE("xr runtime: grip poses are the recorded hand poses, blended between s
     for (const auto& s : right) {
       INFO("t = " << s.t);
       check_pose(locate(grip, stage, sample_time(s.t)), at(s));
-      check_pose(locate(grip, local, sample_time(s.t)), at(s));  // LOCAL is STAGE
+      Expected above_floor = at(s);
+      above_floor.position.y() += 1.6;
+      check_pose(locate(grip, floor, sample_time(s.t)), above_floor);  // STAGE is LOCAL lowered by 1.6 m
     }
   }
   SECTION("between samples at most 0.1 s apart, blended at exactly the asked time") {

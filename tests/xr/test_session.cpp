@@ -250,7 +250,9 @@ TEST_CASE("xr runtime: reference spaces, stage bounds, and the head as the VIEW 
   CHECK(xrLocateViews(session.get(), &info, &state, 2, &n, views.data()) == XR_ERROR_TIME_INVALID);
 }
 
-TEST_CASE("xr runtime: without head samples the head stands at (0, 1.6, 0)") {
+TEST_CASE("xr runtime: without head samples the head stands behind the tracking origin, looking 35 degrees down") {
+  // A person at a table: eyes half a metre behind the tracking origin (LOCAL) at its height, which is
+  // 1.6 m above the STAGE floor; the view axis (-z) turned 35 degrees below the horizon.
   runtime_env();
   Instance instance;
   HeadlessSession session(instance);
@@ -258,7 +260,10 @@ TEST_CASE("xr runtime: without head samples the head stands at (0, 1.6, 0)") {
                                    session.reference_space(XR_REFERENCE_SPACE_TYPE_STAGE), frame_time(1000));
   CHECK(l.locationFlags == kTracked);
   CHECK(l.pose.position.x == 0.0f);
-  CHECK(l.pose.position.y == 1.6f);
-  CHECK(l.pose.position.z == 0.0f);
-  CHECK(l.pose.orientation.w == 1.0f);
+  CHECK(l.pose.position.y == Approx(1.6));
+  CHECK(l.pose.position.z == Approx(0.5));
+  const Eigen::Quaterniond q(l.pose.orientation.w, l.pose.orientation.x, l.pose.orientation.y, l.pose.orientation.z);
+  const Eigen::Vector3d forward = q * Eigen::Vector3d(0, 0, -1);
+  CHECK(std::asin(-forward.y()) * 180.0 / M_PI == Approx(35.0).margin(1e-4));
+  CHECK(forward.x() == Approx(0.0).margin(1e-7));
 }

@@ -36,13 +36,13 @@ Session::Session(const Instance& instance, const void* graphics_binding, Log log
     XrReferenceSpaceCreateInfo space{XR_TYPE_REFERENCE_SPACE_CREATE_INFO};
     space.poseInReferenceSpace.orientation.w = 1.0f;
     space.referenceSpaceType = stage_ ? XR_REFERENCE_SPACE_TYPE_STAGE : XR_REFERENCE_SPACE_TYPE_LOCAL;
-    if (!stage_) space.poseInReferenceSpace.position.y = -float(kStandingEyeHeight);
+    if (stage_) space.poseInReferenceSpace.position.y = float(kStandingEyeHeight);
     check(instance.handle(), xrCreateReferenceSpace(session_, &space, &space_), "xrCreateReferenceSpace");
     XrReferenceSpaceCreateInfo view{XR_TYPE_REFERENCE_SPACE_CREATE_INFO};
     view.poseInReferenceSpace.orientation.w = 1.0f;
     view.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_VIEW;
     check(instance.handle(), xrCreateReferenceSpace(session_, &view, &view_), "xrCreateReferenceSpace(VIEW)");
-    if (!stage_) log_("the runtime has no STAGE space: tracking in LOCAL, its origin taken 1.6 m below the eyes");
+    if (!stage_) log_("the runtime has no STAGE space: tracking in LOCAL (the floor is where the scene's interaction origin puts it)");
   } catch (...) {
     xrDestroySession(session_);
     throw;

@@ -91,7 +91,7 @@ TrackedPose Playback::head(XrTime t) const {
   if (head_.times.empty()) {
     TrackedPose out;
     out.tracked = true;
-    out.pose.position = Eigen::Vector3d(0.0, 1.6, 0.0);
+    out.pose = default_head();
     return out;
   }
   return sample(head_, t, true);

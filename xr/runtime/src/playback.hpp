@@ -3,7 +3,7 @@
 // before T, blended with the next one when they are at most kInterpolationGap apart (position linearly,
 // orientation by slerp), else held; before its first sample the hand is untracked. Buttons and analog
 // values are the last sample's, never blended. Head samples, when there are any, give the view pose the
-// same way (before the first one, the first one is held); without them the head stands at (0, 1.6, 0).
+// same way (before the first one, the first one is held); without them the head is default_head().
 #pragma once
 
 #include <array>
@@ -19,6 +19,20 @@ struct Recording;
 }
 
 namespace wedge::xr_replay {
+
+// The recording's tracking space is LOCAL: its origin at the eyes of a person standing at the scene (Wedge's
+// scenes map it to the world by their interaction origin, (0, 1.6, 0) in the shipped ones), y up. STAGE
+// has its origin on the floor kStageDepth below it, as a real runtime's floor-level stage would.
+inline constexpr double kStageDepth = 1.6;  // m
+
+// The head of a recording without head samples: half a metre behind the tracking origin (the scene's
+// interaction point), at its height, looking 35 degrees down at it: a person at a table.
+inline Pose default_head() {
+  Pose p;
+  p.position = Eigen::Vector3d(0.0, 0.0, 0.5);
+  p.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(-35.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()));
+  return p;
+}
 
 inline constexpr int kLeft = 0, kRight = 1, kHandCount = 2;
 
@@ -53,7 +67,7 @@ struct TrackedPose {
 
 class Playback {
  public:
-  Playback() = default;  // no recording: hands untracked, head at (0, 1.6, 0), never ends
+  Playback() = default;  // no recording: hands untracked, head at default_head(), never ends
   explicit Playback(const recordings::Recording& r);
 
   TrackedPose grip(int hand, XrTime t) const;  // the recorded hand pose is the grip pose

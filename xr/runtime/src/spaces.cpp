@@ -132,8 +132,9 @@ Located locate(const Space& space, XrTime t) {
   const Playback& playback = space.session->instance->playback;
   if (!space.is_action) {
     if (space.reference == XR_REFERENCE_SPACE_TYPE_VIEW) return attach(playback.head(t), space.offset);
-    TrackedPose still;  // LOCAL and STAGE are the tracking space itself
+    TrackedPose still;  // LOCAL is the tracking space itself; STAGE's origin is on the floor below it
     still.tracked = true;
+    if (space.reference == XR_REFERENCE_SPACE_TYPE_STAGE) still.pose.position.y() = -kStageDepth;
     return attach(still, space.offset);
   }
   const Source* source = active_pose_source(*space.session, space.action, space.subaction);

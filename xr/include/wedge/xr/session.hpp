@@ -1,8 +1,13 @@
 // The OpenXR session and its life: created on the instance's system (with an OpenGL binding to render,
 // or none when headless), begun when the runtime says READY, ended when it says STOPPING, and over on
 // EXITING, LOSS_PENDING, instance loss or an exit request (hello_xr's state handling, written for Wedge).
-// Every state change is logged as one line. The tracking space is STAGE where the runtime has one (the
-// floor at y = 0), else LOCAL lowered by a standing eye height, so that y = 0 is about the floor.
+// Every state change is logged as one line.
+//
+// The tracking space is the recordings' and the scenes': its origin at the eyes of a person standing at
+// the scene, y up (a scene's interaction origin, (0, 1.6, 0) in the shipped ones, is where that point is
+// in the world). Where the runtime has a STAGE (origin on the real floor) it is the STAGE raised by a
+// standing eye height, so that the scene's floor lies on the room's; else it is LOCAL (origin at the eyes
+// when the session began), and the floor is where the scene's interaction origin puts it.
 #pragma once
 
 #include <openxr/openxr.h>
@@ -17,7 +22,7 @@ namespace wedge::xr {
 
 using Log = std::function<void(const std::string&)>;
 
-inline constexpr double kStandingEyeHeight = 1.6;  // m: LOCAL's origin is at the eyes; the floor is this far below
+inline constexpr double kStandingEyeHeight = 1.6;  // m: the tracking origin above a STAGE's floor
 
 class Session {
  public:
@@ -42,7 +47,7 @@ class Session {
   const std::string& end_reason() const { return end_reason_; }
 
   XrSession handle() const { return session_; }
-  XrSpace space() const { return space_; }       // tracking space (STAGE, or LOCAL lowered to the floor)
+  XrSpace space() const { return space_; }       // tracking space (STAGE raised to eye height, or LOCAL)
   XrSpace view_space() const { return view_; }   // the head
   bool stage() const { return stage_; }
   static constexpr XrViewConfigurationType kViewConfiguration = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
