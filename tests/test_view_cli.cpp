@@ -11,8 +11,11 @@
 #include <string>
 
 #include "cli_runner.hpp"
+#include "png_pixels.hpp"
 
 using namespace cli_runner;
+
+constexpr int kViewLeft = 316;  // px: the 3D view starts right of the panel; pixels are looked for there
 
 namespace {
 
@@ -25,43 +28,6 @@ std::string scene(double blue_w) {
          std::to_string(blue_w) + R"(], "color": [0, 0, 1]}]})";
 }
 
-// A screenshot's pixels, RGB rows top down.
-struct Image {
-  std::uint32_t width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-  const std::uint8_t* at(std::uint32_t x, std::uint32_t y) const { return &rgb[3 * (std::size_t(y) * width + x)]; }
-};
-Image load(const fs::path& file) {
-  png_image img{};
-  img.version = PNG_IMAGE_VERSION;
-  REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
-  img.format = PNG_FORMAT_RGB;
-  Image out;
-  out.rgb.resize(PNG_IMAGE_SIZE(img));
-  REQUIRE(png_image_finish_read(&img, nullptr, out.rgb.data(), 0, nullptr) != 0);
-  out.width = img.width;
-  out.height = img.height;
-  return out;
-}
-
-// Where the pixels that pass `is` are, in the box [x0, x1) x [y0, y1) (clipped): their count and centroid.
-struct Blob {
-  long count = 0;
-  double x = 0, y = 0;
-};
-template <typename Pred>
-Blob find(const Image& im, Pred is, int x0 = 316, int y0 = 0, int x1 = 1 << 20, int y1 = 1 << 20) {
-  Blob b;
-  for (std::uint32_t y = std::uint32_t(std::max(y0, 0)); y < std::min(im.height, std::uint32_t(y1)); ++y)
-    for (std::uint32_t x = std::uint32_t(std::max(x0, 0)); x < std::min(im.width, std::uint32_t(x1)); ++x)
-      if (is(im.at(x, y))) ++b.count, b.x += x, b.y += y;
-  if (b.count > 0) b.x /= double(b.count), b.y /= double(b.count);
-  return b;
-}
-// A lit body of one pure colour: that channel dominates.
-auto pure(int c) {
-  return [c](const std::uint8_t* p) { return p[c] > 2 * p[(c + 1) % 3] + 30 && p[c] > 2 * p[(c + 2) % 3] + 30; };
-}
 // The viewer's markers: the right hand (magenta), a haptic flash (yellow), contact points (orange).
 bool magenta(const std::uint8_t* p) { return p[0] > p[1] + 80 && p[2] > p[1] + 60; }
 bool yellow(const std::uint8_t* p) { return p[0] > 150 && p[1] > 0.8 * p[0] && p[2] < 60; }
@@ -72,7 +38,7 @@ std::array<long, 3> coverage(const fs::path& file, int from_x) {
   const Image im = load(file);
   return {find(im, pure(0), from_x).count, find(im, pure(1), from_x).count, find(im, pure(2), from_x).count};
 }
-Blob blob(const fs::path& file, int channel) { return find(load(file), pure(channel)); }
+Blob blob(const fs::path& file, int channel) { return find(load(file), pure(channel), kViewLeft); }
 
 // Runs `wedge ARGS` with DISPLAY set to a fresh Xvfb server (the server picks a free display number).
 Result under_xvfb(const TempDir& dir, const std::string& args) {
@@ -239,8 +205,8 @@ TEST_CASE("wedge view --replay draws the recorded hand as a marker", "[cli][view
   REQUIRE(without.code == 0);
   REQUIRE(with.code == 0);
   // Magenta (red and blue well above green) appears only with the hand.
-  CHECK(find(load(dir.path() / "a.png"), magenta).count == 0);
-  CHECK(find(load(dir.path() / "b.png"), magenta).count > 15);
+  CHECK(find(load(dir.path() / "a.png"), magenta, kViewLeft).count == 0);
+  CHECK(find(load(dir.path() / "b.png"), magenta, kViewLeft).count > 15);
 }
 
 TEST_CASE("wedge view: the phone control tilts gravity, and a recorded session replays it", "[cli][view][replay]") {
@@ -339,12 +305,12 @@ TEST_CASE("wedge view: a push shows the hand marker, flashes it at the haptic pu
   }
   auto shot = [&](std::int64_t f) { return load(dir.path() / name(f)); };
   INFO("pulse steps " << hit << ".." << last << ", frames " << before << ", " << during << ", " << after);
-  CHECK(find(shot(before), magenta).count > 15);
-  CHECK(find(shot(before), yellow).count == 0);
-  CHECK(find(shot(during), yellow).count > 40);  // (both cubes: the hand's grown to 6 cm half size)
-  CHECK(find(shot(during), magenta).count == 0);
-  CHECK(find(shot(after), magenta).count > 15);
-  CHECK(find(shot(after), yellow).count == 0);
+  CHECK(find(shot(before), magenta, kViewLeft).count > 15);
+  CHECK(find(shot(before), yellow, kViewLeft).count == 0);
+  CHECK(find(shot(during), yellow, kViewLeft).count > 40);  // (both cubes: the hand's grown to 6 cm half size)
+  CHECK(find(shot(during), magenta, kViewLeft).count == 0);
+  CHECK(find(shot(after), magenta, kViewLeft).count > 15);
+  CHECK(find(shot(after), yellow, kViewLeft).count == 0);
 }
 
 TEST_CASE("wedge view --contacts marks the contact points where a resting tesseract meets the ground",
@@ -359,8 +325,8 @@ TEST_CASE("wedge view --contacts marks the contact points where a resting tesser
   REQUIRE(without.code == 0);
   REQUIRE(with.code == 0);
   const Image a = load(dir.path() / "a.png"), b = load(dir.path() / "b.png");
-  CHECK(find(a, orange).count == 0);
-  const Blob body = find(b, pure(1)), points = find(b, orange);
+  CHECK(find(a, orange, kViewLeft).count == 0);
+  const Blob body = find(b, pure(1), kViewLeft), points = find(b, orange, kViewLeft);
   // The face on the ground is a cube in x, z, w; its 8 corners project onto the 4 bottom corners of the
   // slice's cube, drawn over everything: orange, below the body's centre, about as far left as right.
   INFO("body at " << body.x << ", " << body.y << "; contact marks " << points.count << " px at " << points.x << ", "

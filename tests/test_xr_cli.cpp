@@ -12,13 +12,12 @@
 #ifdef WEDGE_XR_MANIFEST
 #include <catch2/catch.hpp>
 
-#include <png.h>
-
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 
 #include "cli_runner.hpp"
+#include "png_pixels.hpp"
 #include "wedge/recordings/recording.hpp"
 
 using namespace cli_runner;
@@ -226,42 +225,6 @@ TEST_CASE("wedge xr: Khronos's core validation layer, loaded, reports nothing", 
 
 namespace {
 
-// An eye image's pixels (RGB rows top down) and where the pure red ones are.
-struct Picture {
-  std::uint32_t width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-};
-Picture load_png(const fs::path& file) {
-  png_image img{};
-  img.version = PNG_IMAGE_VERSION;
-  REQUIRE(png_image_begin_read_from_file(&img, file.string().c_str()) != 0);
-  img.format = PNG_FORMAT_RGB;
-  Picture out;
-  out.rgb.resize(PNG_IMAGE_SIZE(img));
-  REQUIRE(png_image_finish_read(&img, nullptr, out.rgb.data(), 0, nullptr) != 0);
-  out.width = img.width;
-  out.height = img.height;
-  return out;
-}
-struct RedBlob {
-  long count = 0;
-  double x = 0, y = 0;
-  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
-};
-RedBlob red_blob(const Picture& im) {
-  RedBlob b;
-  for (std::uint32_t y = 0; y < im.height; ++y)
-    for (std::uint32_t x = 0; x < im.width; ++x) {
-      const std::uint8_t* p = &im.rgb[3 * (std::size_t(y) * im.width + x)];
-      if (!(p[0] > 2 * p[1] + 30 && p[0] > 2 * p[2] + 30)) continue;  // a lit pure red body
-      ++b.count, b.x += x, b.y += y;
-      b.x0 = std::min(b.x0, double(x)), b.x1 = std::max(b.x1, double(x));
-      b.y0 = std::min(b.y0, double(y)), b.y1 = std::max(b.y1, double(y));
-    }
-  if (b.count) b.x /= double(b.count), b.y /= double(b.count);
-  return b;
-}
-
 Eigen::Vector3d vec3(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
 Eigen::Quaterniond quat_xyzw(const json& a) {
   return Eigen::Quaterniond(a[3].get<double>(), a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
@@ -346,7 +309,7 @@ TEST_CASE("wedge xr: each eye shows the held tesseract where its view projects i
     for (int e = 0; e < 2; ++e) {
       const json& eye = frame["eyes"][std::size_t(e)];
       expected[std::size_t(e)] = project(frame, eye, centre);
-      const RedBlob b = red_blob(load_png(dir.path() / "frames" / eye["image"].get<std::string>()));
+      const Blob b = find(load(dir.path() / "frames" / eye["image"].get<std::string>()), pure(0));
       INFO("eye " << e << ": the centre projects to (" << expected[std::size_t(e)].transpose() << "), the red pixels' "
                   << b.count << " centroid (" << b.x << ", " << b.y << ")");
       REQUIRE(b.count > 500);  // (a 16 cm cube 0.6 m away: thousands of pixels)
@@ -354,10 +317,10 @@ TEST_CASE("wedge xr: each eye shows the held tesseract where its view projects i
       // The cube's visible faces are not quite symmetric about its centre's projection (seen here within
       // 1.5 px): the tolerance is 4 px, a tenth of its apparent size; and the projection lies in the blob.
       CHECK((seen[std::size_t(e)] - expected[std::size_t(e)]).norm() < 4.0);
-      CHECK(expected[std::size_t(e)].x() > b.x0);
-      CHECK(expected[std::size_t(e)].x() < b.x1);
-      CHECK(expected[std::size_t(e)].y() > b.y0);
-      CHECK(expected[std::size_t(e)].y() < b.y1);
+      CHECK(expected[std::size_t(e)].x() > b.min_x);
+      CHECK(expected[std::size_t(e)].x() < b.max_x);
+      CHECK(expected[std::size_t(e)].y() > b.min_y);
+      CHECK(expected[std::size_t(e)].y() < b.max_y);
     }
     // Parallax: the left eye sees the cube further right than the right eye does, by the disparity the
     // 63 mm between the eyes gives at its depth (the faces' asymmetry cancels between eyes to ~1 px).
