@@ -333,4 +333,33 @@ TEST_CASE("wedge xr: each eye shows the held tesseract where its view projects i
   CHECK(checked == 2);
 }
 
+TEST_CASE("wedge xr: a runtime that predicts display time 0 (as Monado headless does) is paced on its clock",
+          "[cli][xr]") {
+  // No time <= 0 is passed on: the app takes the runtime's clock (XR_KHR_convert_timespec_time) and sleeps
+  // to the display period, so the 7.5 s session takes about 7.5 s of wall time and still grabs, hits and
+  // lets go. (Buttons then come from the runtime's frame count and poses from its clock, which drift
+  // apart by the sleeps' overshoot: this checks survival, not replay fidelity.)
+  TempDir dir;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Result r = dir.shell(runtime_env("recordings/scripted/toy_table_grab.jsonl") +
+                             " WEDGE_XR_QUIRKS=zero-display-time timeout 60 $WEDGE xr " +
+                             (kRoot / "scenes/toy_table_4d.json").string() + " --headless --events events.jsonl");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("predictedDisplayTime 0): pacing on the runtime's clock") != std::string::npos);
+  CHECK(seconds > 6.5);
+  CHECK(seconds < 30.0);
+  int grabs = 0, releases = 0, pulses = 0;
+  for (const json& e : read_lines(dir.path() / "events.jsonl")) {
+    grabs += e["type"] == "grab";
+    releases += e["type"] == "release";
+    pulses += e["type"] == "haptic";
+  }
+  CHECK(grabs == 1);
+  CHECK(releases == 1);
+  CHECK(pulses >= 1);
+  CHECK(read_lines(dir.path() / "haptics.jsonl").size() == std::size_t(pulses));
+}
+
 #endif  // WEDGE_XR_MANIFEST

@@ -47,6 +47,11 @@ std::string read_config(Config& out) {
     out.refuse_session = true;
   else if (!refuse.empty())
     return "WEDGE_XR_REFUSE=" + refuse + ": expected system or session";
+  const std::string quirks = env("WEDGE_XR_QUIRKS");
+  if (quirks == "zero-display-time")
+    out.zero_display_time = true;
+  else if (!quirks.empty())
+    return "WEDGE_XR_QUIRKS=" + quirks + ": expected zero-display-time";
   return "";
 }
 

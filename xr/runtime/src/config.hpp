@@ -16,6 +16,9 @@ struct Config {
   uint32_t frames_every = 1;    // WEDGE_XR_FRAMES_EVERY=K: write every K-th submitted frame
   bool refuse_system = false;   // WEDGE_XR_REFUSE=system: xrGetSystem fails (XR_ERROR_FORM_FACTOR_UNAVAILABLE)
   bool refuse_session = false;  // WEDGE_XR_REFUSE=session: xrCreateSession fails (XR_ERROR_RUNTIME_FAILURE)
+  // WEDGE_XR_QUIRKS=zero-display-time: xrWaitFrame predicts a display time of 0, as Monado's headless mode
+  // does (the runtime's own frame clock goes on underneath), so that an app's survival of it can be tested.
+  bool zero_display_time = false;
 };
 
 // Fills `out` from the environment. Returns "" on success, else one line naming the variable and the problem.

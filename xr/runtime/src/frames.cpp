@@ -121,7 +121,7 @@ XrResult wait_frame(XrSession session, const XrFrameWaitInfo* waitInfo, XrFrameS
   // newer frame simply replaces the older one.
   s->now = frame_display_time(s->frames_waited++);
   s->frame_waited = true;
-  state->predictedDisplayTime = s->now;
+  state->predictedDisplayTime = s->instance->config.zero_display_time ? 0 : s->now;
   state->predictedDisplayPeriod = kFramePeriod;
   state->shouldRender = !s->headless && (s->state == XR_SESSION_STATE_VISIBLE || s->state == XR_SESSION_STATE_FOCUSED)
                             ? XR_TRUE
