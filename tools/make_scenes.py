@@ -70,7 +70,10 @@ def fig2():
     write("fig2_duocylinder_4d.json", {
         "description": "Paper figure 2: a duocylinder (radii 0.5, 0.5) rolls onto a layer of 27 4-balls laid out "
                        "over x, z and w; balls offset in w look like they float in the w = 0 slice.",
-        "dim": 4, "gravity": G4, "timestep": 1 / 120, "bodies": bodies})
+        "dim": 4, "gravity": G4, "timestep": 1 / 120,
+        # A person standing 1.4 m back from the middle of the layer (wedge xr, the input layer).
+        "interaction": {"origin": [0, 1.6, 1.4, 0]},
+        "bodies": bodies})
 
 
 def fig3():
