@@ -187,7 +187,7 @@ TEMPLATE_TEST_CASE("input session: a live session recorded line by line replays 
   }
 }
 
-TEST_CASE("recording writer: a session cut off mid-line keeps every whole line; bad samples are refused",
+TEST_CASE("recording writer: a session cut off mid-line keeps every whole line, and bad samples are refused",
           "[recordings]") {
   TempFile file;
   {
