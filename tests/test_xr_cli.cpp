@@ -362,4 +362,61 @@ TEST_CASE("wedge xr: a runtime that predicts display time 0 (as Monado headless 
   CHECK(read_lines(dir.path() / "haptics.jsonl").size() == std::size_t(pulses));
 }
 
+TEST_CASE("wedge xr: a hand that loses tracking lets go after 0.1 s; a refused binding costs only itself",
+          "[cli][xr]") {
+  // The runtime loses the right controller from 1.0 s to 1.5 s (no samples; WEDGE_XR_QUIRKS=lose-tracking)
+  // while it holds a tesseract 0.5 m up, and refuses one Touch binding (the left X button). The app must
+  // keep the rest of the Touch profile (the grab works), hold the lost hand's pose for 0.1 s and then let
+  // go: the tesseract falls to the floor under gravity. The session's recording says so, sample by sample:
+  // replayed, it ends in the printed hash.
+  TempDir dir;
+  dir.write("scene.json", R"({"dim": 4, "timestep": 0.008333333333333333, "gravity": [0, -9.81, 0, 0],
+    "interaction": {"origin": [0, 1.6, 0, 0]},
+    "bodies": [
+      {"name": "floor", "static": true, "shape": {"type": "halfspace", "normal": [0, 1, 0, 0], "offset": 0}},
+      {"name": "red", "shape": {"type": "box", "half_extents": [0.08, 0.08, 0.08, 0.08]}, "position": [0, 0.08, -0.45, 0]}]})");
+  std::string rec = R"({"format":"wedge-recording","version":1,"source":"script","units":{"time":"s","position":"m","acceleration":"g","rotation_rate":"rad/s"},"conventions":{}})";
+  rec += "\n";
+  for (int i = 0; i <= 250; ++i) {  // 100 Hz for 2.5 s, none in (1.0, 1.5)
+    if (i > 100 && i < 150) continue;
+    const double t = i * 0.01, y = -1.52 + 0.5 * std::clamp((t - 0.3) / 0.5, 0.0, 1.0);
+    rec += R"({"t":)" + std::to_string(t) + R"(,"type":"hand","hand":"right","position":[0,)" + std::to_string(y) +
+           R"(,-0.45],"orientation":[1,0,0,0],"squeeze":)" + (t >= 0.2 && t < 1.8 ? "1" : "0") +
+           R"(,"trigger":0,"buttons":[],"mode4d":false})" + "\n";
+  }
+  dir.write("gap.jsonl", rec);
+  const Result r = dir.shell("XR_RUNTIME_JSON=" WEDGE_XR_MANIFEST " WEDGE_XR_REPLAY=gap.jsonl "
+                             "WEDGE_XR_QUIRKS=lose-tracking,refuse-binding=/user/hand/left/input/x/click $WEDGE xr "
+                             "scene.json --headless --hash --out states.jsonl --events events.jsonl --record session.jsonl");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("binding /user/hand/left/input/x/click refused (XR_ERROR_PATH_UNSUPPORTED); the profile's other "
+                   "bindings kept") != std::string::npos);
+  CHECK(r.err.find("/user/hand/right: /interaction_profiles/oculus/touch_controller") != std::string::npos);
+  std::vector<json> events;
+  for (const json& e : read_lines(dir.path() / "events.jsonl"))
+    if (e["type"] != "haptic") events.push_back(e);
+  REQUIRE(events.size() >= 2);
+  CHECK(events[0]["type"] == "grab");
+  CHECK(events[0]["t"].get<double>() == Approx(0.2).margin(1.0 / 120));
+  CHECK(events[1]["type"] == "release");
+  // Lost after the sample at 1.0 s; let go at the first step more than 0.1 s later.
+  CHECK(events[1]["t"].get<double>() > 1.1);
+  CHECK(events[1]["t"].get<double>() <= 1.1 + 1.0 / 120 + 1e-9);
+  const std::vector<json> states = read_lines(dir.path() / "states.jsonl");
+  auto height_at = [&](double t) {
+    for (const json& s : states)
+      if (s.contains("time") && s["time"].get<double>() >= t - 1e-9) return s["bodies"][1]["center"][1].get<double>();
+    return -1.0;
+  };
+  CHECK(height_at(1.0) == Approx(0.58).margin(0.01));  // held 0.5 m up
+  CHECK(height_at(1.45) == Approx(0.08).margin(0.005));  // dropped (0.5 m takes 0.32 s) and at rest on the floor
+  const std::size_t at = r.out.find("state hash ");
+  REQUIRE(at != std::string::npos);
+  const Result again = dir.run("replay scene.json session.jsonl --every 1000000 --hash --until " +
+                               std::to_string(states[states.size() - 2]["time"].get<double>()));
+  REQUIRE(again.code == 0);
+  CHECK(again.lines().back()["state_hash"] == r.out.substr(at + 11, 16));
+}
+
 #endif  // WEDGE_XR_MANIFEST

@@ -34,6 +34,7 @@ XrResult suggest(XrInstance instance, const XrInteractionProfileSuggestedBinding
     if (binding == nullptr) return XR_ERROR_PATH_INVALID;
     BindingTarget target;
     if (!parse_binding(*profile, *binding, target)) return XR_ERROR_PATH_UNSUPPORTED;
+    if (*binding == in->config.refused_binding) return XR_ERROR_PATH_UNSUPPORTED;  // (WEDGE_XR_QUIRKS)
   }
   if (in->bindings_frozen) return XR_ERROR_ACTIONSETS_ALREADY_ATTACHED;
   in->suggestions[info->interactionProfile].assign(info->suggestedBindings,

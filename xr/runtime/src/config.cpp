@@ -1,6 +1,7 @@
 // Environment variables -> Config (config.hpp).
 #include "config.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -48,10 +49,20 @@ std::string read_config(Config& out) {
   else if (!refuse.empty())
     return "WEDGE_XR_REFUSE=" + refuse + ": expected system or session";
   const std::string quirks = env("WEDGE_XR_QUIRKS");
-  if (quirks == "zero-display-time")
-    out.zero_display_time = true;
-  else if (!quirks.empty())
-    return "WEDGE_XR_QUIRKS=" + quirks + ": expected zero-display-time";
+  for (std::size_t begin = 0; begin < quirks.size();) {
+    const std::size_t end = std::min(quirks.find(',', begin), quirks.size());
+    const std::string quirk = quirks.substr(begin, end - begin);
+    begin = end + 1;
+    if (quirk == "zero-display-time")
+      out.zero_display_time = true;
+    else if (quirk == "lose-tracking")
+      out.lose_tracking = true;
+    else if (quirk.rfind("refuse-binding=/", 0) == 0)
+      out.refused_binding = quirk.substr(std::string("refuse-binding=").size());
+    else
+      return "WEDGE_XR_QUIRKS=" + quirks + ": unknown quirk '" + quirk +
+             "' (expected zero-display-time, lose-tracking, refuse-binding=PATH, comma-separated)";
+  }
   return "";
 }
 

@@ -16,9 +16,17 @@ struct Config {
   uint32_t frames_every = 1;    // WEDGE_XR_FRAMES_EVERY=K: write every K-th submitted frame
   bool refuse_system = false;   // WEDGE_XR_REFUSE=system: xrGetSystem fails (XR_ERROR_FORM_FACTOR_UNAVAILABLE)
   bool refuse_session = false;  // WEDGE_XR_REFUSE=session: xrCreateSession fails (XR_ERROR_RUNTIME_FAILURE)
-  // WEDGE_XR_QUIRKS=zero-display-time: xrWaitFrame predicts a display time of 0, as Monado's headless mode
-  // does (the runtime's own frame clock goes on underneath), so that an app's survival of it can be tested.
+  // WEDGE_XR_QUIRKS, a comma-separated list of ways real runtimes deviate, so that an app's survival of
+  // them can be tested:
+  //   zero-display-time: xrWaitFrame predicts a display time of 0, as Monado's headless mode does (the
+  //     runtime's own frame clock goes on underneath);
+  //   lose-tracking: a hand is not tracked across a gap of more than 0.1 s between its samples (the
+  //     recordings' own rule holds the pose there), as a controller that leaves the cameras' view;
+  //   refuse-binding=PATH: xrSuggestInteractionProfileBindings refuses any suggestion holding the binding
+  //     PATH (XR_ERROR_PATH_UNSUPPORTED), as a runtime that does not know one component.
   bool zero_display_time = false;
+  bool lose_tracking = false;
+  std::string refused_binding;
 };
 
 // Fills `out` from the environment. Returns "" on success, else one line naming the variable and the problem.

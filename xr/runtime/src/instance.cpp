@@ -36,7 +36,7 @@ std::string load(Instance& in) {
     try {
       const recordings::Recording rec = recordings::read_recording(in.config.replay_path);
       for (const std::string& w : rec.warnings) report("WEDGE_XR_REPLAY: " + w);
-      in.playback = Playback(rec);
+      in.playback = Playback(rec, in.config.lose_tracking);
     } catch (const std::exception& e) {
       return std::string("WEDGE_XR_REPLAY: ") + e.what();  // wedge::Error's message starts with the path
     }

@@ -26,7 +26,7 @@ bool threshold(bool was_on, double v) { return was_on ? v > 0.45 : v >= 0.55; }
 
 }  // namespace
 
-Playback::Playback(const recordings::Recording& r) {
+Playback::Playback(const recordings::Recording& r, bool lose_tracking) : lose_tracking_(lose_tracking) {
   end_ = recording_to_xr_time(r.duration());  // 0 s for an empty recording: it ends at once
   std::array<bool, kHandCount> squeeze_on{}, trigger_on{};
   for (const HandSample& s : r.hands) {
@@ -85,7 +85,15 @@ TrackedPose Playback::sample(const Track& track, XrTime t, bool hold_first) {
   return out;
 }
 
-TrackedPose Playback::grip(int hand, XrTime t) const { return sample(hands_[hand].track, t, false); }
+TrackedPose Playback::grip(int hand, XrTime t) const {
+  const Track& track = hands_[hand].track;
+  if (lose_tracking_) {  // inside a gap of more than 0.1 s: lost (after the last sample: held, as always)
+    const std::size_t c = std::size_t(std::upper_bound(track.times.begin(), track.times.end(), t) - track.times.begin());
+    if (c > 0 && c < track.times.size() && t > track.times[c - 1] && track.times[c] - track.times[c - 1] > kInterpolationGap)
+      return {};
+  }
+  return sample(track, t, false);
+}
 
 TrackedPose Playback::head(XrTime t) const {
   if (head_.times.empty()) {

@@ -68,7 +68,8 @@ struct TrackedPose {
 class Playback {
  public:
   Playback() = default;  // no recording: hands untracked, head at default_head(), never ends
-  explicit Playback(const recordings::Recording& r);
+  // lose_tracking: a hand is untracked across gaps of more than 0.1 s (WEDGE_XR_QUIRKS=lose-tracking).
+  explicit Playback(const recordings::Recording& r, bool lose_tracking = false);
 
   TrackedPose grip(int hand, XrTime t) const;  // the recorded hand pose is the grip pose
   TrackedPose head(XrTime t) const;            // always tracked
@@ -91,6 +92,7 @@ class Playback {
   std::array<HandStream, kHandCount> hands_;
   Track head_;
   std::optional<XrTime> end_;
+  bool lose_tracking_ = false;
 };
 
 }  // namespace wedge::xr_replay
