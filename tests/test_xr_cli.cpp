@@ -362,7 +362,7 @@ TEST_CASE("wedge xr: a runtime that predicts display time 0 (as Monado headless 
   CHECK(read_lines(dir.path() / "haptics.jsonl").size() == std::size_t(pulses));
 }
 
-TEST_CASE("wedge xr: a hand that loses tracking lets go after 0.1 s; a refused binding costs only itself",
+TEST_CASE("wedge xr: a hand that loses tracking lets go after 0.1 s, and a refused binding costs only itself",
           "[cli][xr]") {
   // The runtime loses the right controller from 1.0 s to 1.5 s (no samples; WEDGE_XR_QUIRKS=lose-tracking)
   // while it holds a tesseract 0.5 m up, and refuses one Touch binding (the left X button). The app must
