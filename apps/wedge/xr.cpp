@@ -191,8 +191,10 @@ class XrApp {
         if (const auto head = controllers_->head_at(at)) recorder_->head(f.t, *head);
       for (const input::HapticPulse<N>& p : session_->pulses()) {
         controllers_->pulse(p.hand, p.amplitude, p.duration, p.frequency);
-        flash_until_[std::size_t(p.hand)] = world_.time() + kFlash;
-        hits_.emplace_back(p.point, world_.time() + kFlash);
+        if (!o_.headless) {  // (marks for the eyes; nothing draws them headless)
+          flash_until_[std::size_t(p.hand)] = world_.time() + kFlash;
+          hits_.emplace_back(p.point, world_.time() + kFlash);
+        }
       }
       output_.after_step(*session_);
     }
