@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "csv_dialects.hpp"
 #include "recording_checks.hpp"
 #include "wedge/recordings/recording.hpp"
 
@@ -60,6 +61,20 @@ TEST_CASE("wedge import coremotion: the shipped iPhone trace", "[cli][recordings
   CHECK(first_difference(written, rec::import_coremotion_csv(kCoreMotionCsv)) == "");
 }
 
+// The issue's defect, as a user met it: a CoreMotion export written by R's write.csv (every header name
+// quoted, a row-name column) imports to the same recording as the plain file.
+TEST_CASE("wedge import coremotion: an export written by R's write.csv", "[cli][recordings]") {
+  TempDir dir;
+  dir.write("r_export.csv", csv_dialects::r_write_csv(read_file(kCoreMotionCsv)));
+  REQUIRE(read_file(dir.path() / "r_export.csv").rfind("\"\",\"magneticField.y\",", 0) == 0);
+  const Result r = dir.run("import coremotion r_export.csv -o phone.jsonl");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("imported 869 rows") == 0);
+  const rec::Recording written = rec::read_recording((dir.path() / "phone.jsonl").string());
+  CHECK(first_difference(written, rec::import_coremotion_csv(kCoreMotionCsv)) == "");
+}
+
 TEST_CASE("wedge import: failures name the file, the line and the problem, and leave no output", "[cli][recordings]") {
   TempDir dir;
   std::string header, first_row;
@@ -73,7 +88,7 @@ TEST_CASE("wedge import: failures name the file, the line and the problem, and l
   dir.write("bad.csv", header + "\n" + first_row + "\n" + bad_row + "\n");
   check_failure(dir, dir.run("import questset bad.csv --out out.jsonl"),
                 "bad.csv:3: time is not a finite number ('soon')", {"bad.csv"});
-  check_failure(dir, dir.run("import coremotion bad.csv --out out.jsonl"), "bad.csv: line 1: no column", {"bad.csv"});
+  check_failure(dir, dir.run("import coremotion bad.csv --out out.jsonl"), "bad.csv:1: no column", {"bad.csv"});
   check_failure(dir, dir.run("import vive bad.csv --out out.jsonl"),
                 "unknown recording format 'vive' (the formats are questset and coremotion)", {"bad.csv"});
   check_failure(dir, dir.run("import questset missing.csv --out out.jsonl"), "missing.csv: cannot open file",

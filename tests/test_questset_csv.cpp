@@ -7,11 +7,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_runner.hpp"  // TempDir: a fresh folder per test case
+#include "csv_dialects.hpp"
 #include "recording_checks.hpp"
 #include "wedge/error.hpp"
 #include "wedge/recordings/recording.hpp"
@@ -108,6 +110,28 @@ TEST_CASE("Quest import: the shipped questset trace", "[recordings]") {
   CHECK(first_difference(r, shipped) == "");
 }
 
+// RFC 4180 as real tools write it: R's write.csv (quoted header names, a row-name column), a spreadsheet
+// (byte-order mark, CRLF, no final newline), every field quoted with blank lines. Each imports to the
+// plain file's recording, bit for bit.
+TEST_CASE("Quest import: the dialects real tools write import to the same recording", "[recordings]") {
+  const cli_runner::TempDir temp;
+  const Recording plain = import_questset_csv(kCsv);
+  std::ifstream in(kCsv, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::pair<const char*, std::string> dialects[] = {
+      {"R write.csv", csv_dialects::r_write_csv(text)},
+      {"spreadsheet", csv_dialects::spreadsheet(text)},
+      {"quoted", csv_dialects::quoted_everywhere(text, false)},
+  };
+  for (const auto& [name, written] : dialects) {
+    INFO(name);
+    REQUIRE(written != text);
+    const std::string path = (temp.path() / "dialect.csv").string();
+    std::ofstream(path, std::ios::binary) << written;
+    CHECK(first_difference(import_questset_csv(path), plain) == "");
+  }
+}
+
 TEST_CASE("Quest import: columns in any order, CRLF, TouchButtons split between the hands", "[recordings]") {
   const cli_runner::TempDir temp;
   const fs::path& dir = temp.path();
@@ -172,6 +196,8 @@ TEST_CASE("Quest import: bad files name the file, the line and the problem", "[r
        "LeftTouchOrientation{W,X,Y,Z} is not a unit quaternion"},
       {H + a + "0,0.1,0.2,0.3,0.5,1,2,3,1,0,0,0,4,5,6,0,1,0,0,7,8,9,0,0,0,0,2\n", 3,
        "HeadOrientation{W,X,Y,Z} is not a unit quaternion (norm 0"},
+      {H + a + "\"0" + row("0", "2").substr(1) + "\n", 3, "a quoted field is still open at the end of the file"},
+      {H + a + "\"0\"1" + row("0", "2").substr(1) + "\n", 3, "malformed CSV quoting"},
   };
   for (const Case& c : cases) {
     const std::string path = (dir / "bad.csv").string();

@@ -5,10 +5,10 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "csv_table.hpp"
 #include "unit_quaternion.hpp"
 #include "wedge/error.hpp"
 #include "wedge/recordings/coremotion_csv.hpp"
@@ -16,17 +16,6 @@
 
 namespace wedge::recordings {
 namespace {
-
-// The fields of a CSV line; a CRLF line ending is not part of the last field.
-std::vector<std::string> split(std::string line) {
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  std::vector<std::string> out;
-  std::size_t begin = 0;
-  for (std::size_t comma; (comma = line.find(',', begin)) != std::string::npos; begin = comma + 1)
-    out.push_back(line.substr(begin, comma - begin));
-  out.push_back(line.substr(begin));
-  return out;
-}
 
 // The questset columns (signetlabdei/questset, Oculus PC SDK names), in the order read below.
 constexpr std::array<const char*, 27> kQuestColumns = {
@@ -43,46 +32,42 @@ enum QuestColumn { kButtons, kLeftIndex, kRightIndex, kLeftHand, kRightHand, kLe
 }  // namespace
 
 Recording import_questset_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
+  const std::vector<CsvRecord> records = read_csv(path);
   auto fail = [&](int line, const std::string& problem) {
     throw Error(path + ":" + std::to_string(line) + ": " + problem);
   };
-  std::string line;
-  if (!std::getline(in, line) || line.empty() || line == "\r")
-    fail(1, "empty file (expected a header row naming the questset columns)");
-  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark from a spreadsheet
-  const std::vector<std::string> header = split(line);
+  if (records.empty()) fail(1, "empty file (expected a header row naming the questset columns)");
+  const std::vector<std::string>& header = records.front().fields;
+  const int header_line = records.front().line;
   std::array<std::size_t, kQuestColumns.size()> column{};
   for (std::size_t k = 0; k < kQuestColumns.size(); ++k) {
     std::size_t c = 0;
     while (c < header.size() && header[c] != kQuestColumns[k]) ++c;
-    if (c == header.size()) fail(1, std::string("no column '") + kQuestColumns[k] + "' in the header");
+    if (c == header.size()) fail(header_line, std::string("no column '") + kQuestColumns[k] + "' in the header");
     column[k] = c;
   }
   // Every column must be one of the 27, once: an unknown one may be a renamed column whose data would be lost.
+  // A column with an empty name is a row index (R's write.csv row names, pandas' to_csv index): not data.
   for (std::size_t c = 0; c < header.size(); ++c) {
+    if (header[c].empty()) continue;
     const std::size_t k = std::find(kQuestColumns.begin(), kQuestColumns.end(), header[c]) - kQuestColumns.begin();
-    if (k == kQuestColumns.size()) fail(1, "unknown column '" + header[c] + "' (questset has 27 known columns)");
-    if (column[k] != c) fail(1, "column '" + header[c] + "' appears twice");
+    if (k == kQuestColumns.size())
+      fail(header_line, "unknown column '" + header[c] + "' (questset has 27 known columns)");
+    if (column[k] != c) fail(header_line, "column '" + header[c] + "' appears twice");
   }
 
   Recording r;
   r.source = "quest2-touch";
   double t0 = 0.0, last_time = 0.0;
   std::string last_time_text;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> fields = split(line);
+  for (std::size_t record = 1; record < records.size(); ++record) {
+    const auto& [number, fields] = records[record];
     if (fields.size() != header.size())
       fail(number, std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
     std::array<double, kQuestColumns.size()> v{};
     for (std::size_t k = 0; k < kQuestColumns.size(); ++k) {
       const std::string& text = fields[column[k]];
-      char* end = nullptr;
-      errno = 0;
-      v[k] = std::strtod(text.c_str(), &end);
-      if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v[k]))
+      if (!parse_finite(text, v[k]))
         fail(number, std::string(kQuestColumns[k]) + " is not a finite number ('" + text + "')");
     }
     if (v[kButtons] < 0 || v[kButtons] > 4294967295.0 || v[kButtons] != std::floor(v[kButtons]))
@@ -128,7 +113,6 @@ Recording import_questset_csv(const std::string& path) {
     r.hands.push_back(right);
     r.heads.push_back(head);
   }
-  if (in.bad()) throw Error(path + ": read failed");
   if (r.heads.empty()) throw Error(path + ": no samples after the header");
   return r;
 }

@@ -16,7 +16,8 @@ struct CoreMotionSample {
   Eigen::Vector3d rotation_rate = Eigen::Vector3d::Zero();      // rad/s, device frame
 };
 
-// Reads a whole file. Throws wedge::Error naming the file, and the line where there is one, for a missing
+// Reads a whole file, in any RFC 4180 dialect (csv_table.hpp). Throws wedge::Error naming the file, and the
+// line where there is one ("PATH:LINE: problem"), for malformed quoting, a missing
 // file or column, a field that is not a finite number, a short row, or timestamps that go backwards.
 std::vector<CoreMotionSample> read_coremotion_csv(const std::string& path);
 
