@@ -1,2 +1,14 @@
-#define CATCH_CONFIG_MAIN
+// The test runner: Catch2's, with floating-point traps on. Invalid operations (0/0, inf - inf, sqrt(-1)),
+// division by zero and overflow raise SIGFPE where they happen, so a NaN or an infinity born anywhere in a
+// step fails the test at its source instead of surfacing later as a wrong number. Underflow and inexact are
+// left off: gradual underflow and rounding are ordinary arithmetic. Third-party code that computes with
+// infinities on purpose runs inside fp_traps::Suspended (support/fp_traps.hpp).
+#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "fp_traps.hpp"
+
+int main(int argc, char* argv[]) {
+  fp_traps::enable();
+  return Catch::Session().run(argc, argv);
+}

@@ -8,6 +8,8 @@
 // wrong formula (the continuous x0 + v0 t + g t^2 / 2 differs by h^2 g n / 2 ~ 5e-2 at n = 100).
 #include <catch2/catch.hpp>
 
+#include <csignal>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -366,11 +368,6 @@ TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli
       {"duplicate nested key", R"({"dim": 3, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}},
          {"name": "b", "shape": {"type": "sphere", "type": "box", "radius": 1}}]})", "--steps 1",
        "bodies[1].shape: duplicate key 'type'"},
-      {"total energy overflows", R"({"dim": 3, "bodies": [{"name": "rocket", "shape": {"type": "sphere", "radius": 1},
-         "velocity": [1e200, 0, 0]}]})", "--steps 1", "energy overflowed to a non-finite value at step 0 (the fastest body is 'rocket' at 1e+200 m/s;"},
-      {"state overflows", R"({"dim": 3, "gravity": [1e308, 0, 0], "bodies": [{"name": "stone",
-         "shape": {"type": "sphere", "radius": 1}}]})", "--steps 100 --every 1000 --dt 0.1",
-       "non-finite position of body 'stone' at step 18"},
   };
   for (const Case& c : cases) {
     INFO(c.what);
@@ -387,6 +384,36 @@ TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli
       CHECK(!fs::exists(dir.path() / "out.jsonl"));
       CHECK(dir.listing().size() == (c.scene ? 1u : 0u));  // no temporary files left behind
     }
+  }
+}
+
+// A run that overflows: as users run it, the program names the body and the quantity (exit 2); with
+// floating-point traps on (WEDGE_FP_TRAPS=1, as every other CLI test runs it) the first overflowing
+// operation stops it with SIGFPE (a shell's 128 + 8), at its source.
+TEST_CASE("wedge simulate: a state that overflows is named, or trapped at its source with WEDGE_FP_TRAPS=1", "[cli]") {
+  struct Case {
+    const char* what;
+    const char* scene;
+    const char* args;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"total energy overflows", R"({"dim": 3, "bodies": [{"name": "rocket", "shape": {"type": "sphere", "radius": 1},
+         "velocity": [1e200, 0, 0]}]})", "--steps 1", "energy overflowed to a non-finite value at step 0 (the fastest body is 'rocket' at 1e+200 m/s;"},
+      {"state overflows", R"({"dim": 3, "gravity": [1e308, 0, 0], "bodies": [{"name": "stone",
+         "shape": {"type": "sphere", "radius": 1}}]})", "--steps 100 --every 1000 --dt 0.1",
+       "non-finite position of body 'stone' at step 18"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    TempDir dir;
+    dir.write("bad.json", c.scene);
+    const Result r = dir.shell(std::string("WEDGE_FP_TRAPS=0 $WEDGE simulate bad.json ") + c.args);
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("wedge: bad.json: ", 0) == 0);
+    CHECK(r.err.find(c.message) != std::string::npos);
+    CHECK(dir.run(std::string("simulate bad.json ") + c.args).code == 128 + SIGFPE);
   }
 }
 

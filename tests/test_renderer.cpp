@@ -11,10 +11,13 @@
 // Shadows: a cube above the ground darkens exactly the ground under it (the square's perspective image,
 // counted the same way), less the higher it is, and nothing else. Contact sheets: size, layout, the box
 // filter and the labels, without OpenGL.
+// Floating-point traps (tests/main.cpp) are off wherever Mesa draws: its software rasteriser computes with
+// infinities on purpose (clipping, depth), which is Mesa's arithmetic, not ours.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
 
+#include "fp_traps.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/products.hpp"
@@ -48,6 +51,7 @@ FrameDesc looking_down_z() {
 
 // Pixels that differ from the background (read at a corner, which the shapes never reach).
 long covered_pixels(const DisplayMesh<3>& mesh) {
+  const fp_traps::Suspended mesa;
   OffscreenContext ctx(kW, kH);
   Renderer renderer;
   FrameDesc frame = looking_down_z();
@@ -108,6 +112,7 @@ TEST_CASE("Renderer: an overlay is drawn over a body in front of it, a plain mes
   const DisplayMesh<3> back = small_slicer.slice(Placement<4>{Mat<4>::Identity(), Vec<4>(0, 0, -2, 0)},
                                                  Hyperplane<4>::axis(0.0));
   for (const bool overlay : {false, true}) {
+    const fp_traps::Suspended mesa;
     OffscreenContext ctx(kW, kH);
     Renderer renderer;
     FrameDesc frame = looking_down_z();
@@ -162,6 +167,7 @@ TEST_CASE("Renderer: a sliced 4-ball covers a disk between its inner and outer r
 TEST_CASE("Renderer: the ground grid and the camera's view of it", "[renderer]") {
   // Looking straight down at a ground plane y = 0 that fills the view: every pixel is ground, none is
   // background; with the ground off, every pixel is background.
+  const fp_traps::Suspended mesa;
   OffscreenContext ctx(64, 48);
   Renderer renderer;
   FrameDesc frame;
@@ -204,6 +210,7 @@ bool inside_convex(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector
 
 TEST_CASE("Renderer: a body's shadow darkens the ground straight below it, and nothing else", "[renderer]") {
   constexpr int w = 240, h = 180;
+  const fp_traps::Suspended mesa;
   OffscreenContext ctx(w, h);
   Renderer renderer;
   MeshSlicer<4> slicer(display_mesh(Shape<4>::box(Vec<4>::Constant(0.5)), 1));

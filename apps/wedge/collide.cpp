@@ -20,6 +20,7 @@
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/broadphase.hpp"
 #include "wedge/collision/narrow_phase.hpp"
+#include "wedge/fp_env.hpp"
 #include "wedge/ga/products.hpp"
 
 namespace wedge::cli {
@@ -119,6 +120,7 @@ CLI::App* add_collide_verb(CLI::App& app, CollideOptions& o) {
 int run_collide(const CollideOptions& o) {
   double margin = 0.0;
   if (!o.margin.empty()) {
+    const ExpectedFpExceptions quiet;  // "1e999" overflows: refused below
     char* end = nullptr;
     margin = std::strtod(o.margin.c_str(), &end);
     if (end != o.margin.c_str() + o.margin.size() || !std::isfinite(margin) || margin < 0.0)

@@ -8,12 +8,14 @@
 #include <vector>
 
 #include "cli_error.hpp"
+#include "fp_traps.hpp"
 #include "interrupt.hpp"
 #include "verbs.hpp"
 #include "wedge/error.hpp"
 
 int main(int argc, char** argv) {
   using namespace wedge::cli;
+  enable_fp_traps_if_requested();  // WEDGE_FP_TRAPS=1 (fp_traps.hpp)
   CLI::App app{"wedge: n-dimensional rigid-body dynamics (n = 2..6) with geometric algebra.\n"
                "Input and output formats: docs/scene-format.md.",
                "wedge"};

@@ -24,6 +24,7 @@
 #include <iostream>
 #include <optional>
 
+#include "fp_traps.hpp"
 #include "interrupt.hpp"
 #include "replay_input.hpp"
 #include "scene_frame.hpp"
@@ -153,6 +154,7 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     }
 
     // Draw and write. On any failure or interruption: remove what this run wrote, then rethrow.
+    const MesaArithmetic mesa;  // (the steps above ran with the traps WEDGE_FP_TRAPS asks for)
     render::OffscreenContext context(size.width, size.height);
     render::Renderer renderer;
     const fs::path dir(o.out);

@@ -14,6 +14,7 @@
 #include "cli_error.hpp"
 #include "interrupt.hpp"
 #include "scene_json.hpp"
+#include "wedge/fp_env.hpp"
 #include "wedge/world.hpp"
 
 namespace wedge::cli {
@@ -30,6 +31,7 @@ inline bool parse_int64(const std::string& text, std::int64_t& out) {
 }
 inline bool parse_double(const std::string& text, double& out) {
   if (text.empty()) return false;
+  const ExpectedFpExceptions quiet;  // "1e999" overflows: refused below
   errno = 0;
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
@@ -96,9 +98,9 @@ template <int N>
 std::pair<int, const char*> first_non_finite_state(const World<N>& world) {
   for (int i = 0; i < world.body_count(); ++i) {
     const Body<N>& b = world.body(BodyId{std::uint32_t(i)});
-    if (!b.center.allFinite()) return {i, "position"};
+    if (!all_finite(b.center)) return {i, "position"};
     if (!b.rotor.all_finite()) return {i, "rotor"};
-    if (!b.velocity.allFinite()) return {i, "velocity"};
+    if (!all_finite(b.velocity)) return {i, "velocity"};
     if (!b.angular_velocity.all_finite()) return {i, "angular velocity"};
   }
   return {-1, ""};

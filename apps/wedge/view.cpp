@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "fp_traps.hpp"
 #include "interrupt.hpp"
 #include "verbs.hpp"
 #include "view_mouse.hpp"
@@ -228,6 +229,7 @@ class Viewer {
   // mouse hand and the phone. First the slice moves (the panel's sliders or list, the script) and a reset
   // happens; with --frames each frame is 1/60 s of simulated time, else the clock's (at most 0.1 s).
   void advance(const PanelRequests& asked) {
+    const TrappedSteps trapped;  // WEDGE_FP_TRAPS=1: the steps run with traps on, the drawing without
     const auto t0 = std::chrono::steady_clock::now();
     const double elapsed = std::min(seconds_since(last_advance_), 0.1);
     last_advance_ = std::chrono::steady_clock::now();
@@ -291,6 +293,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
     (void)doc, (void)w0, (void)width, (void)height, (void)frames, (void)subdivisions, (void)play_subdivisions;
     throw Failure(o.scene + ": a 2D scene has no 3D slice to view (view needs a 3D..6D scene)");
   } else {
+    const MesaArithmetic mesa;  // the window draws through Mesa; advance() traps the steps (fp_traps.hpp)
     Viewer<N> viewer(doc, o, w0, width, height, frames, subdivisions, play_subdivisions);
     return viewer.run();
   }

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "fp_traps.hpp"
 #include "interrupt.hpp"
 #include "replay_input.hpp"
 #include "scene_json.hpp"
@@ -176,6 +177,7 @@ class XrApp {
   // The physics steps due by this frame's display time, each with the hands located at its own time;
   // the pulses go out to the controllers as they come.
   void step_to(XrTime now) {
+    const TrappedSteps trapped;  // WEDGE_FP_TRAPS=1: the steps run with traps on, the drawing without
     const double h = scene_.timestep;
     while (clock_.step_time(session_->step_count(), h) <= now) {
       if (run_.until && session_->time() >= *run_.until - 1e-9) {
@@ -282,6 +284,8 @@ int run_xr_scene(const Json& doc, const XrOptions& o, const XrRun& run) {
   const Scene<N> scene = load_scene<N>(doc, o.scene);
   if (N < 3 && !o.headless)
     throw Failure(o.scene + ": a 2D scene has no 3D slice to show in a headset (run it --headless, or a 3D..6D scene)");
+  std::optional<MesaArithmetic> mesa;  // the eyes draw through Mesa; step_to traps the steps (fp_traps.hpp)
+  if (!o.headless) mesa.emplace();
   XrApp<N> app(scene, o, run);
   app.run();
   app.finish();

@@ -143,7 +143,7 @@ ConvexHull<N> convex_hull(const std::vector<Vec<N>>& points) {
     throw Error("convex hull in " + std::to_string(N) + "D needs at least " + std::to_string(N + 1) +
                 " points (got " + std::to_string(n) + ")");
   for (int i = 0; i < n; ++i)
-    if (!points[std::size_t(i)].allFinite())
+    if (!all_finite(points[std::size_t(i)]))
       throw Error("convex hull: point " + std::to_string(i) + " has a non-finite coordinate");
 
   // The points must span R^N: singular values of the centred point matrix, relative to the largest.

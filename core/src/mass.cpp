@@ -230,7 +230,7 @@ BivMat<N> inertia_about(const MassProperties<N>& props, const Vec<N>& point) {
 template <int N>
 PrincipalFrame<N> principal_frame(const MassProperties<N>& props) {
   const Mat<N>& c = props.covariance;
-  if (!c.allFinite() || !(c.trace() > 0.0)) throw Error("principal frame: the covariance is not positive");
+  if (!all_finite(c) || !(c.trace() > 0.0)) throw Error("principal frame: the covariance is not positive");
   double off = 0.0;
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j)

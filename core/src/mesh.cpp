@@ -80,7 +80,7 @@ void validate(const SimplexMesh<N>& mesh) {
   const std::size_t nv = mesh.vertices.size();
   if (mesh.cells.empty()) throw Error("mesh has no cells");
   for (std::size_t i = 0; i < nv; ++i)
-    if (!mesh.vertices[i].allFinite())
+    if (!all_finite(mesh.vertices[i]))
       throw Error("mesh vertex " + std::to_string(i) + " has a non-finite coordinate");
 
   // Indices, repeated vertices, zero-volume cells.

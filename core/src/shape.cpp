@@ -66,7 +66,7 @@ Shape<N>::Shape(shapes::Mesh<N> mesh) {
 
 template <int N>
 Shape<N>::Shape(shapes::Halfspace<N> h) {
-  if (!h.normal.allFinite() || !std::isfinite(h.offset)) throw Error("half-space normal and offset must be finite");
+  if (!all_finite(h.normal) || !std::isfinite(h.offset)) throw Error("half-space normal and offset must be finite");
   const double len = h.normal.norm();
   if (!(len > 1e-12)) throw Error("half-space normal must be non-zero (it is normalised to unit length)");
   h.normal /= len;

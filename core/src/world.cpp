@@ -10,6 +10,7 @@
 #include "linalg/decompositions.hpp"
 #include "linalg/isotropic.hpp"
 #include "wedge/error.hpp"
+#include "wedge/fp_env.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
 
@@ -18,7 +19,7 @@ namespace wedge {
 namespace {
 template <class M>
 bool finite(const M& m) {
-  return m.allFinite();
+  return all_finite(m);
 }
 }  // namespace
 
@@ -32,8 +33,10 @@ Body<N> make_body(const BodyDef<N>& def) {
   if ((rr - Rotor<N>::identity()).norm() > 1e-6)
     throw Error(who + ": rotor is not a rotation (R ~R differs from 1 by " +
                 std::to_string((rr - Rotor<N>::identity()).norm()) + ")");
-  if (!(def.linear_drag >= 0.0) || !(def.angular_drag >= 0.0) || !std::isfinite(def.linear_drag) ||
-      !std::isfinite(def.angular_drag))
+  // (Each value is classified before it is compared: an ordered comparison with NaN raises the invalid-
+  // operation exception, which traps where traps are on.)
+  if (!(std::isfinite(def.linear_drag) && def.linear_drag >= 0.0) ||
+      !(std::isfinite(def.angular_drag) && def.angular_drag >= 0.0))
     throw Error(who + ": drag coefficients must be finite and >= 0");
   Body<N> b;
   b.type = def.type;
@@ -46,7 +49,14 @@ Body<N> make_body(const BodyDef<N>& def) {
   b.velocity = def.velocity;
   b.angular_velocity = def.angular_velocity;
   if (def.type == BodyType::Kinematic) return b;
-  if (!(def.mass > 0.0) || !std::isfinite(def.mass) || !std::isfinite(1.0 / def.mass)) {
+  // 1 / 1e-320 overflows: refused just below. (volatile: the division must happen inside the guarded scope;
+  // the compiler would otherwise be free to move it past the restored environment.)
+  volatile double inv_mass = 0.0;
+  {
+    const ExpectedFpExceptions quiet;
+    inv_mass = 1.0 / def.mass;
+  }
+  if (!(std::isfinite(def.mass) && def.mass > 0.0) || !std::isfinite(inv_mass)) {
     std::ostringstream s;  // (std::to_string would print 1e-320 as 0.000000)
     s << who << ": mass must be positive and finite, with a finite inverse (got " << def.mass << ")";
     throw Error(s.str());
@@ -57,10 +67,13 @@ Body<N> make_body(const BodyDef<N>& def) {
   if (!(eig[0] > 1e-12 * eig[kBiv<N> - 1]))
     throw Error(who + ": inertia must be positive definite");
   b.mass = def.mass;
-  b.inv_mass = 1.0 / def.mass;
+  b.inv_mass = inv_mass;
   b.inertia = 0.5 * (def.inertia + def.inertia.transpose());
-  b.inv_inertia = b.inertia.inverse();
-  if (!b.inv_inertia.allFinite()) throw Error(who + ": inertia is too small to invert (its inverse overflows)");
+  {
+    const ExpectedFpExceptions quiet;  // an inverse too large for a double is refused just below
+    b.inv_inertia = b.inertia.inverse();
+  }
+  if (!all_finite(b.inv_inertia)) throw Error(who + ": inertia is too small to invert (its inverse overflows)");
   b.inv_inertia = 0.5 * (b.inv_inertia + b.inv_inertia.transpose()).eval();
   return b;
 }
@@ -120,7 +133,7 @@ void check_material(const Material& m, const std::string& who) {
 template <int N>
 World<N>::World(const WorldSettings<N>& settings)
     : settings_(settings), contact_(std::make_unique<contact::ContactState<N>>()) {
-  if (!settings_.gravity.allFinite()) throw Error("gravity must be finite");
+  if (!all_finite(settings_.gravity)) throw Error("gravity must be finite");
   if (settings_.rotor_repair_interval < 1) throw Error("rotor_repair_interval must be >= 1");
   check_contact_settings(settings_.contact);
   contact_->workers.resize(settings_.workers);
@@ -179,7 +192,7 @@ template <int N>
 void World<N>::move_kinematic(BodyId id, const Vec<N>& position, const Rotor<N>& rotor, double h) {
   Body<N>& b = bodies_[check(id)];
   if (b.type != BodyType::Kinematic) throw Error("move_kinematic: body '" + names_[id.index] + "' is not kinematic");
-  if (!(h > 0.0) || !position.allFinite() || !rotor.all_finite()) throw Error("move_kinematic: invalid target");
+  if (!(h > 0.0) || !all_finite(position) || !rotor.all_finite()) throw Error("move_kinematic: invalid target");
   const Rotor<N> target = repair(rotor);
   // R' = exp(-h w / 2) R  =>  w = -2 log(R' ~R) / h; the centre follows the body frame.
   b.angular_velocity = log<N>(target * reverse(b.rotor)) * (-2.0 / h);
@@ -196,7 +209,7 @@ std::uint32_t World<N>::check(BodyId id) const {
 
 template <int N>
 void World<N>::set_gravity(const Vec<N>& g) {
-  if (!g.allFinite()) throw Error("set_gravity: gravity must be finite");
+  if (!all_finite(g)) throw Error("set_gravity: gravity must be finite");
   if (g == settings_.gravity) return;
   settings_.gravity = g;
   for (std::size_t i = 0; i < bodies_.size(); ++i)
@@ -215,7 +228,7 @@ std::uint32_t World<N>::check(GrabId id) const {
 namespace {
 template <int N>
 void check_grab_target(const Vec<N>& target, const Vec<N>& velocity) {
-  if (!target.allFinite() || !velocity.allFinite()) throw Error("grab: target and its velocity must be finite");
+  if (!all_finite(target) || !all_finite(velocity)) throw Error("grab: target and its velocity must be finite");
 }
 }  // namespace
 
@@ -223,7 +236,7 @@ template <int N>
 GrabId World<N>::add_grab(const GrabDef<N>& def) {
   const Body<N>& b = bodies_[check(def.body)];
   if (!b.is_dynamic()) throw Error("add_grab: body '" + names_[def.body.index] + "' is not dynamic");
-  if (!def.local_point.allFinite()) throw Error("add_grab: the grab point must be finite");
+  if (!all_finite(def.local_point)) throw Error("add_grab: the grab point must be finite");
   check_grab_target(def.target, def.target_velocity);
   if (!(def.frequency > 0.0) || !std::isfinite(def.frequency)) throw Error("add_grab: frequency must be > 0 (Hz)");
   if (!(def.damping_ratio >= 0.0) || !std::isfinite(def.damping_ratio))
@@ -306,14 +319,14 @@ std::vector<ContactInfo<N>> World<N>::contacts() const {
 template <int N>
 void World<N>::apply_force(BodyId id, const Vec<N>& f) {
   check(id);
-  if (!(f.allFinite())) throw Error("apply_force: non-finite input for body '" + names_[id.index] + "'");
+  if (!(all_finite(f))) throw Error("apply_force: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   bodies_[id.index].force += f;
 }
 template <int N>
 void World<N>::apply_force_at(BodyId id, const Vec<N>& f, const Vec<N>& p) {
   check(id);
-  if (!(f.allFinite() && p.allFinite())) throw Error("apply_force_at: non-finite input for body '" + names_[id.index] + "'");
+  if (!(all_finite(f) && all_finite(p))) throw Error("apply_force_at: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   b.force += f;
@@ -329,7 +342,7 @@ void World<N>::apply_torque(BodyId id, const Bivector<N>& t) {
 template <int N>
 void World<N>::apply_impulse_at(BodyId id, const Vec<N>& j, const Vec<N>& p) {
   check(id);
-  if (!(j.allFinite() && p.allFinite())) throw Error("apply_impulse_at: non-finite input for body '" + names_[id.index] + "'");
+  if (!(all_finite(j) && all_finite(p))) throw Error("apply_impulse_at: non-finite input for body '" + names_[id.index] + "'");
   if (bodies_[id.index].is_dynamic()) contact_->wake_island(int(id.index));
   Body<N>& b = bodies_[id.index];
   if (!b.is_dynamic()) return;

@@ -28,7 +28,7 @@ void candidates(const contact::ContactState<N>& s, const Aabb<N>& box, F&& f) {
 
 template <int N>
 std::optional<BodyPointHit<N>> World<N>::query_point(const Vec<N>& x, double max_distance, bool include_static) const {
-  if (!x.allFinite() || !(max_distance >= 0.0) || !std::isfinite(max_distance))
+  if (!all_finite(x) || !(max_distance >= 0.0) || !std::isfinite(max_distance))
     throw Error("query_point: the point must be finite and max_distance finite and >= 0");
   std::optional<BodyPointHit<N>> best;
   const Aabb<N> box = Aabb<N>::from_center(x, Vec<N>::Constant(max_distance));
@@ -52,7 +52,7 @@ template <int N>
 std::optional<RayHit<N>> World<N>::ray_cast(const Vec<N>& origin, const Vec<N>& direction, double max_distance,
                                             bool include_static) const {
   const double length = direction.norm();
-  if (!origin.allFinite() || !direction.allFinite() || !(length > 0.0) || !(max_distance >= 0.0) ||
+  if (!all_finite(origin) || !all_finite(direction) || !(length > 0.0) || !(max_distance >= 0.0) ||
       !std::isfinite(max_distance))
     throw Error("ray_cast: origin and direction must be finite, direction non-zero, max_distance finite and >= 0");
   constexpr double kHitTolerance = 1e-12;  // m

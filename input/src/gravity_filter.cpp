@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "wedge/error.hpp"
+#include "wedge/ga/types.hpp"
 
 namespace wedge::input {
 
@@ -13,7 +14,7 @@ GravityFilter::GravityFilter(const GravityFilterSettings& settings) : settings_(
 }
 
 void GravityFilter::update(const Eigen::Vector3d& acceleration, const Eigen::Vector3d& rotation_rate, double dt) {
-  if (!acceleration.allFinite() || !rotation_rate.allFinite() || !std::isfinite(dt) || dt < 0.0)
+  if (!all_finite(acceleration) || !all_finite(rotation_rate) || !std::isfinite(dt) || dt < 0.0)
     throw Error("GravityFilter::update: acceleration, rotation rate and dt must be finite, dt >= 0");
   if (!ready_) {
     gravity_ = acceleration;

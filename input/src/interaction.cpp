@@ -59,7 +59,7 @@ Vec<N> gravity_from_device(const Eigen::Vector3d& direction, double magnitude, b
 
 template <int N>
 Interaction<N>::Interaction(World<N>& world, const InteractionSettings<N>& s) : world_(world), settings_(s) {
-  require(s.tracking.origin.allFinite() && positive(s.tracking.scale), "tracking origin finite and scale > 0");
+  require(all_finite(s.tracking.origin) && positive(s.tracking.scale), "tracking origin finite and scale > 0");
   require(s.squeeze_off >= 0.0 && s.squeeze_off < s.squeeze_on && s.squeeze_on <= 1.0,
           "0 <= squeeze_off < squeeze_on <= 1");
   require(s.grab_radius >= 0.0 && std::isfinite(s.grab_radius), "grab_radius finite and >= 0 (m)");
@@ -83,7 +83,7 @@ Interaction<N>::Interaction(World<N>& world, const InteractionSettings<N>& s) : 
 
 template <int N>
 void Interaction<N>::set_tracking_origin(const Vec<N>& origin) {
-  if (!origin.allFinite()) throw Error("set_tracking_origin: the origin must be finite");
+  if (!all_finite(origin)) throw Error("set_tracking_origin: the origin must be finite");
   const Vec<N> change = origin - settings_.tracking.origin;
   settings_.tracking.origin = origin;
   for (HandState& hs : hands_) hs.point += change;  // (the next frame's difference is the hand's own motion)

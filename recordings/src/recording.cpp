@@ -20,6 +20,8 @@
 
 #include "unit_quaternion.hpp"
 #include "wedge/error.hpp"
+#include "wedge/fp_env.hpp"
+#include "wedge/ga/types.hpp"
 
 namespace wedge::recordings {
 namespace {
@@ -128,6 +130,7 @@ bool parse_line(const LineReader& at, std::string_view text, Json& out, std::str
     return true;
   };
   try {
+    const ExpectedFpExceptions quiet;  // 1e999 overflows while parsed: reported below as out of range
     out = Json::parse(text.begin(), text.end(), watch);
   } catch (const Json::parse_error& e) {
     std::string what = e.what();  // "[json.exception.parse_error.101] parse error at line 1, column 5: ..."
@@ -235,7 +238,7 @@ class SampleWriter {
     last_t_ = t;
   }
   void finite(const Eigen::Vector3d& v, const std::string& where, const char* key) const {
-    if (!v.allFinite()) fail(where, std::string(key) + " is not finite");
+    if (!all_finite(v)) fail(where, std::string(key) + " is not finite");
   }
   void pose(const Pose& p, const std::string& where) const {
     finite(p.position, where, "position");

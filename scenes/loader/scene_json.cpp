@@ -215,8 +215,8 @@ SceneBody<N> read_body(const Node& node, int index) {
   } catch (const Error& e) {
     throw JsonError(shape_node.path(), e.what());
   }
-  if (!(mp.mass > 0.0) || !std::isfinite(mp.mass) || !std::isfinite(density) || !mp.inertia.allFinite() ||
-      !mp.center.allFinite())
+  if (!(mp.mass > 0.0) || !std::isfinite(mp.mass) || !std::isfinite(density) || !all_finite(mp.inertia) ||
+      !all_finite(mp.center))
     shape_node.fail("mass properties are not positive and finite (mass " + format_number(mp.mass) +
                     "); is the shape degenerate or the density extreme?");
   def.mass = mp.mass;

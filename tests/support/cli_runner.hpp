@@ -75,7 +75,9 @@ class TempDir {
   // Runs the command in this folder, capturing stdout, stderr and the exit code.
   Result capture(const std::string& command) const {
     const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
-    const std::string cmd = "cd '" + path_.string() + "' && " + command + " >'" + out + "' 2>'" + err + "'";
+    // WEDGE_FP_TRAPS=1: the program runs with floating-point traps on, as the tests do (tests/main.cpp).
+    const std::string cmd =
+        "cd '" + path_.string() + "' && export WEDGE_FP_TRAPS=1 && " + command + " >'" + out + "' 2>'" + err + "'";
     const int status = std::system(cmd.c_str());
     Result r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

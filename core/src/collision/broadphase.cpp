@@ -234,7 +234,7 @@ template <int N>
 bool BroadPhase<N>::move_proxy(int proxy, const Aabb<N>& box, const Vec<N>& displacement) {
   require_proxy(proxy, "move_proxy");
   if (!box.valid()) throw Error("broad phase: move_proxy: the box must be finite with lo <= hi");
-  if (!displacement.allFinite()) throw Error("broad phase: move_proxy: the displacement must be finite");
+  if (!all_finite(displacement)) throw Error("broad phase: move_proxy: the displacement must be finite");
   const Aabb<N> fat = fat_box_for(box, displacement);
   const Aabb<N>& current = nodes_[proxy].box;
   if (contains(current, box) && contains(fattened(fat, settings_.shrink_margins * settings_.margin), current))

@@ -216,7 +216,7 @@ inline void set_effective_masses(P& p, const Mat<N>& k, const Vec<N>& n) {
   p.normal_mass = 1.0 / n.dot(p.kn);
   const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
   p.tangent_mass = (proj * k * proj + n * n.transpose()).inverse();
-  if (!(std::isfinite(p.normal_mass) && p.normal_mass >= 0.0) || !p.tangent_mass.allFinite()) {
+  if (!(std::isfinite(p.normal_mass) && p.normal_mass >= 0.0) || !all_finite(p.tangent_mass)) {
     p.normal_mass = 0.0;
     p.tangent_mass.setZero();
     p.kn.setZero();

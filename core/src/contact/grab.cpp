@@ -33,7 +33,7 @@ bool prepare_grabs(ContactState<N>& s, const std::vector<Body<N>>& bodies, doubl
     g.impulse_scale = 1.0 / (1.0 + a2);
     g.bias = (omega / a1) * (b.center + g.r - g.def.target);
     g.max_impulse = b.mass * g.def.max_acceleration * h;
-    if (!g.mass.allFinite()) {  // (K is positive definite for a valid body; never let a NaN in)
+    if (!all_finite(g.mass)) {  // (K is positive definite for a valid body; never let a NaN in)
       g.active = false;
       continue;
     }

@@ -20,7 +20,7 @@ struct Aabb {
   // hi - lo: the side lengths.
   Vec<N> extents() const { return hi - lo; }
   // Finite and lo <= hi on every axis.
-  bool valid() const { return lo.allFinite() && hi.allFinite() && (lo.array() <= hi.array()).all(); }
+  bool valid() const { return all_finite(lo) && all_finite(hi) && (lo.array() <= hi.array()).all(); }
 
   static Aabb from_center(const Vec<N>& center, const Vec<N>& half_extents) {
     return {center - half_extents, center + half_extents};

@@ -272,7 +272,7 @@ EpaResult<N> epa(const SupportA& support_a, const SupportB& support_b, const Sim
     Vec<N> pa, pb;
     support(fc.normal, pa, pb);
     const Vec<N> w = pa - pb;
-    if (!w.allFinite()) break;
+    if (!all_finite(w)) break;
     if (fc.normal.dot(w) - fc.distance <= tol_abs) {
       res.ok = true;
       break;

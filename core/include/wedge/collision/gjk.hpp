@@ -178,7 +178,7 @@ GjkResult<N> gjk(const SupportA& support_a, const SupportB& support_b, const Vec
   GjkResult<N> res;
   Simplex<N>& s = res.simplex;
   Vec<N> d = initial_direction;
-  if (!d.allFinite() || !(d.squaredNorm() > 0.0)) d = Vec<N>::Unit(0);
+  if (!all_finite(d) || !(d.squaredNorm() > 0.0)) d = Vec<N>::Unit(0);
   // v (the current closest point of A - B) starts as the support point of A - B in direction d, i.e.
   // sA(d) - sB(-d), the point nearest the origin if d is the true direction from A to B; every later
   // query is in -v.
@@ -203,7 +203,7 @@ GjkResult<N> gjk(const SupportA& support_a, const SupportB& support_b, const Vec
     const Vec<N> a = support_a(Vec<N>(-v));
     const Vec<N> b = support_b(v);
     const Vec<N> w = a - b;
-    if (!w.allFinite()) break;  // a broken support function: keep the last finite answer
+    if (!all_finite(w)) break;  // a broken support function: keep the last finite answer
     scale2 = std::max(scale2, w.squaredNorm());
     // v.w / |v| is a lower bound of the distance, |v| an upper bound.
     if (v2 - v.dot(w) <= tol * v2) break;

@@ -31,7 +31,7 @@ Rotor<N> rotor_between_vectors(const Vec<N>& u, const Vec<N>& v) {
 template <int N>
 Rotor<N> rotor_between_frames(const Mat<N>& from, const Mat<N>& to) {
   for (const Mat<N>* f : {&from, &to}) {
-    if (!f->allFinite() || !((f->transpose() * *f - Mat<N>::Identity()).cwiseAbs().maxCoeff() <= 1e-6))
+    if (!all_finite(*f) || !((f->transpose() * *f - Mat<N>::Identity()).cwiseAbs().maxCoeff() <= 1e-6))
       throw Error("rotor_between_frames: a frame is not orthonormal (columns must be unit and orthogonal)");
   }
   if (from.determinant() * to.determinant() < 0.0)

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "wedge/ga/blades.hpp"
 
@@ -29,6 +30,17 @@ template <int N>
 using BivMat = Eigen::Matrix<double, kBiv<N>, kBiv<N>>;
 template <int N>
 using WedgeMat = Eigen::Matrix<double, kBiv<N>, N>;
+
+// True when every coefficient is finite. Eigen's allFinite() computes x - x, which raises the invalid-
+// operation exception for an infinity; this classifies each number (std::isfinite raises nothing), so a
+// check for bad input stays quiet under floating-point traps (tests/main.cpp).
+template <class Derived>
+bool all_finite(const Eigen::DenseBase<Derived>& m) {
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      if (!std::isfinite(m.derived().coeff(i, j))) return false;
+  return true;
+}
 
 namespace detail {
 // A thin fixed-size coefficient array with arithmetic; Derived adds meaning.
@@ -71,7 +83,7 @@ struct Coeffs {
   // Euclidean norm of the coefficients; for a bivector |B|^2 = -<B B>_0.
   double norm() const { return c.norm(); }
   double squared_norm() const { return c.squaredNorm(); }
-  bool all_finite() const { return c.allFinite(); }
+  bool all_finite() const { return wedge::all_finite(c); }
 };
 }  // namespace detail
 
