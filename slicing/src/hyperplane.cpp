@@ -9,7 +9,7 @@ namespace wedge::slicing {
 template <int N>
 Hyperplane<N> Hyperplane<N>::through(const Vec<N>& normal, double offset) {
   const double len = normal.norm();
-  if (!normal.allFinite() || !std::isfinite(offset) || !(len > 1e-12) || !std::isfinite(len))
+  if (!all_finite(normal) || !std::isfinite(offset) || !(len > 1e-12) || !std::isfinite(len))
     throw Error("slice hyperplane: the normal must be finite and non-zero and the offset finite");
   Hyperplane h;
   h.normal = normal / len;

@@ -9,7 +9,7 @@ namespace wedge::slicing {
 std::optional<Pick> pick(const std::vector<DisplayMesh<3>>& meshes, const Eigen::Vector3d& origin,
                          const Eigen::Vector3d& direction, double max_distance) {
   const double length = direction.norm();
-  if (!(length > 0.0) || !origin.allFinite() || !direction.allFinite()) return std::nullopt;
+  if (!(length > 0.0) || !all_finite(origin) || !all_finite(direction)) return std::nullopt;
   const Eigen::Vector3d d = direction / length;
   std::optional<Pick> best;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
