@@ -31,7 +31,8 @@ std::vector<CoreMotionSample> read_coremotion_csv(const std::string& path) {
   }
   std::vector<CoreMotionSample> samples;
   for (std::size_t r = 1; r < records.size(); ++r) {
-    const auto& [number, fields] = records[r];
+    const int number = records[r].line;
+    const std::vector<std::string>& fields = records[r].fields;
     if (fields.size() != header.size())
       fail(number, std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
     std::array<double, 10> v{};

@@ -61,7 +61,8 @@ Recording import_questset_csv(const std::string& path) {
   double t0 = 0.0, last_time = 0.0;
   std::string last_time_text;
   for (std::size_t record = 1; record < records.size(); ++record) {
-    const auto& [number, fields] = records[record];
+    const int number = records[record].line;
+    const std::vector<std::string>& fields = records[record].fields;
     if (fields.size() != header.size())
       fail(number, std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
     std::array<double, kQuestColumns.size()> v{};

@@ -221,10 +221,10 @@ TEST_CASE("xr runtime: xrGetInstanceProcAddr answers every core function, and th
   CHECK(gipa(instance, "xrConvertTimespecTimeToTimeKHR", &f) == XR_SUCCESS);
   CHECK(gipa(instance, "xrConvertTimeToTimespecTimeKHR", &f) == XR_SUCCESS);
   // XR_KHR_opengl_enable was not enabled: its function is not there; unknown names never are.
-  f = reinterpret_cast<PFN_xrVoidFunction>(&gipa);
+  f = reinterpret_cast<PFN_xrVoidFunction>(gipa);  // not null: the call must clear it
   CHECK(gipa(instance, "xrGetOpenGLGraphicsRequirementsKHR", &f) == XR_ERROR_FUNCTION_UNSUPPORTED);
   CHECK(f == nullptr);
-  f = reinterpret_cast<PFN_xrVoidFunction>(&gipa);
+  f = reinterpret_cast<PFN_xrVoidFunction>(gipa);  // not null: the call must clear it
   CHECK(gipa(instance, "xrGetVulkanGraphicsRequirementsKHR", &f) == XR_ERROR_FUNCTION_UNSUPPORTED);
   CHECK(f == nullptr);
   CHECK(gipa(instance, "xrNoSuchFunction", &f) == XR_ERROR_FUNCTION_UNSUPPORTED);

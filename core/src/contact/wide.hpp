@@ -51,8 +51,9 @@ struct PackOf<2> {
 };
 template <>
 struct PackOf<4> {  // aligned as the 16-byte packs, so that AVX lanes can read SSE2 lanes' storage
-  using Value = double __attribute__((vector_size(32), aligned(16)));
-  using Mask = std::int64_t __attribute__((vector_size(32), aligned(16)));
+  // (typedef, not using: Clang ignores the alignment attribute on an alias declaration)
+  typedef double Value __attribute__((vector_size(32), aligned(16)));
+  typedef std::int64_t Mask __attribute__((vector_size(32), aligned(16)));
 };
 
 // P packs of L lanes.

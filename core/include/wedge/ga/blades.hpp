@@ -159,9 +159,11 @@ template <int N>
 struct SandwichMatrixTerms {
   using Bl = Blades<N>;
   static constexpr int kE = Bl::kEven;
+  // The even blades in rotor order, computed once (not in each call of folded(): compilers that do not
+  // memoise constant evaluation would sort them for every coefficient).
+  static constexpr auto even = Bl::template order<Set::Even>();
   // coef(i, j, a, b) for ordered pairs, folded onto a <= b.
   static constexpr int folded(int i, int j, int a, int b) {
-    constexpr auto even = Bl::template order<Set::Even>();
     auto raw = [&](int x, int y) {
       const unsigned ea = even[x], eb = even[y], ej = 1u << j;
       const unsigned m1 = ea ^ ej, m2 = m1 ^ eb;
