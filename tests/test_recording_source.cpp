@@ -4,46 +4,17 @@
 // the real CoreMotion trace through the whole gravity path against CoreMotion's own gravity, and no heap
 // allocation per step once warmed up.
 #include <catch2/catch.hpp>
+#include <optional>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 
+#include "allocation_counter.hpp"
 #include "test_util.hpp"
 #include "wedge/input/interaction.hpp"
 #include "wedge/recordings/recording_source.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/recordings/coremotion_csv.hpp"
-
-// Counts heap allocations while armed: this test binary's malloc, calloc and realloc stand in for
-// glibc's (interposed), so operator new and Eigen's own aligned mallocs are counted alike.
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-// Called on each counted allocation: `break wedge_counted_allocation` in a debugger finds the caller.
-extern "C" __attribute__((noinline)) void wedge_counted_allocation() { g_allocations.fetch_add(1); }
-namespace {
-void count() {
-  if (g_counting.load(std::memory_order_relaxed)) wedge_counted_allocation();
-}
-}  // namespace
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* malloc(std::size_t n) noexcept {
-  count();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t n, std::size_t size) noexcept {
-  count();
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t n) noexcept {
-  count();
-  return __libc_realloc(p, n);
-}
-}
 
 using namespace wedge;
 using namespace wedge::input;
@@ -195,22 +166,21 @@ TEST_CASE("the input path makes no heap allocation per step once warmed up", "[i
   int pulses = 0;
   long stage[3] = {0, 0, 0};
   for (int k = 0; k < 480; ++k) {
-    const bool armed = k >= 240;  // warmed up: buffers have grown to their working size
-    long before = g_allocations.load();
-    g_counting = armed;
+    std::optional<allocation_counter::Armed> armed;
+    if (k >= 240) armed.emplace();  // warmed up: buffers have grown to their working size
+    long before = allocation_counter::count();
     in.before_step(src.frame_at(k / 120.0), 1.0 / 120.0);
-    stage[0] += g_allocations.load() - before;
-    before = g_allocations.load();
+    stage[0] += allocation_counter::count() - before;
+    before = allocation_counter::count();
     world.step(1.0 / 120.0);
-    stage[1] += g_allocations.load() - before;
-    before = g_allocations.load();
+    stage[1] += allocation_counter::count() - before;
+    before = allocation_counter::count();
     in.after_step();
-    stage[2] += g_allocations.load() - before;
-    g_counting = false;
+    stage[2] += allocation_counter::count() - before;
+    armed.reset();
     pulses += int(in.pulses().size());
   }
-  g_counting = false;
-  allocations = g_allocations.load();
+  allocations = stage[0] + stage[1] + stage[2];
   CHECK(in.held(1));
   CHECK(world.body(BodyId{3}).center[0] > 0.7);  // the push reached the far tesseract
   INFO("pulses " << pulses << "; allocations in before_step " << stage[0] << ", step " << stage[1] << ", after_step "

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "allocation_counter.hpp"
 #include "dense.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
@@ -17,17 +18,6 @@
 
 using namespace wedge;
 
-// Counts heap allocations in this test binary, so a test can assert that World::step makes none.
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -380,18 +370,22 @@ long allocations_in_steps() {
     world.apply_torque(id, Bivector<N>::basis(0, 1));
   }
   world.step(1e-3);  // warm-up outside the count
-  const long before = g_allocations.load();
+  const allocation_counter::Armed armed;
+  const long before = allocation_counter::count();
   for (int i = 0; i < 100; ++i) {
     world.apply_force_at(BodyId{0}, Vec<N>::Ones(), Vec<N>::Zero());
     world.step(1e-3);
   }
-  return g_allocations.load() - before;
+  return allocation_counter::count() - before;
 }
 
 TEST_CASE("World::step makes no heap allocation, in any dimension", "[world]") {
-  const long before = g_allocations.load();
-  delete new std::vector<double>(3);  // the counter sees allocations (2 here)
-  CHECK(g_allocations.load() - before == 2);
+  {
+    const allocation_counter::Armed armed;
+    const long before = allocation_counter::count();
+    delete new std::vector<double>(3);  // the counter sees allocations (2 here)
+    CHECK(allocation_counter::count() - before == 2);
+  }
   CHECK(allocations_in_steps<2>() == 0);
   CHECK(allocations_in_steps<3>() == 0);
   CHECK(allocations_in_steps<4>() == 0);

@@ -241,8 +241,8 @@ PrincipalFrame<N> principal_frame(const MassProperties<N>& props) {
   if (off <= 1e-12 * c.trace()) {
     out.axes = Mat<N>::Identity();
   } else {
-    Eigen::VectorXd values;
-    Eigen::MatrixXd vectors;
+    linalg::SmallVector values;
+    linalg::SmallMatrix vectors;
     if (!linalg::symmetric_eigen(c, values, vectors)) throw Error("principal frame: eigen-decomposition failed");
     Mat<N> q = vectors;
     for (int j = 0; j < N; ++j) {

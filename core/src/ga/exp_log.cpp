@@ -11,8 +11,8 @@ BivectorDecomposition<N> decompose_generator(Mat<N> w) {
   BivectorDecomposition<N> out;
   const double scale = w.norm();
   for (int p = 0; p < N / 2; ++p) {
-    Eigen::VectorXd values;
-    Eigen::MatrixXd vectors;
+    linalg::SmallVector values;
+    linalg::SmallMatrix vectors;
     linalg::symmetric_eigen(w.transpose() * w, values, vectors);
     const Vec<N> u = vectors.col(N - 1);
     const Vec<N> wu = w * u;
@@ -53,8 +53,8 @@ Bivector<N> log_by_decomposition(const Rotor<N>& r) {
   };
   while (count < N / 2) {  // large turns
     const Mat<N> sym = 0.5 * (m + m.transpose());
-    Eigen::VectorXd values;
-    Eigen::MatrixXd vectors;
+    linalg::SmallVector values;
+    linalg::SmallMatrix vectors;
     linalg::symmetric_eigen(Mat<N>::Identity() - sym, values, vectors);
     if (values[N - 1] < 0.5) break;
     const Vec<N> u = vectors.col(N - 1);

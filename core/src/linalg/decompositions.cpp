@@ -20,8 +20,8 @@ Eigen::VectorXd symmetric_eigenvalues(const Eigen::MatrixXd& s) {
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
-bool symmetric_eigen(const Eigen::MatrixXd& s, Eigen::VectorXd& values, Eigen::MatrixXd& vectors) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(s);
+bool symmetric_eigen(const SmallMatrix& s, SmallVector& values, SmallMatrix& vectors) {
+  const Eigen::SelfAdjointEigenSolver<SmallMatrix> es(s);
   if (es.info() != Eigen::Success) return false;
   values = es.eigenvalues();
   vectors = es.eigenvectors();

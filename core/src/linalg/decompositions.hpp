@@ -19,14 +19,15 @@ std::vector<Eigen::VectorXd> column_space_basis(const Eigen::MatrixXd& a, double
 // The eigenvalues of the symmetric matrix s, ascending (its lower triangle is read).
 Eigen::VectorXd symmetric_eigenvalues(const Eigen::MatrixXd& s);
 
-// The eigen-decomposition of the symmetric matrix s: eigenvalues ascending, eigenvectors as columns.
-// False when the iteration did not converge.
-bool symmetric_eigen(const Eigen::MatrixXd& s, Eigen::VectorXd& values, Eigen::MatrixXd& vectors);
-
-// Matrices of at most 6 x 6 (the largest N) with their storage inline: no heap allocation, for the
-// narrow phase, which runs in every step.
+// Matrices of at most 6 x 6 (the largest N) with their storage inline: no heap allocation, for the code
+// that runs in every step (the narrow phase, the rotor exponential and logarithm).
 using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
+// The eigen-decomposition of the symmetric matrix s (at most 6 x 6: the world's N x N matrices, in the
+// step's rotor exponential and logarithm, so without heap allocation): eigenvalues ascending,
+// eigenvectors as columns. False when the iteration did not converge.
+bool symmetric_eigen(const SmallMatrix& s, SmallVector& values, SmallMatrix& vectors);
 
 // The least-squares solution of a x = b by column-pivoting QR, with the directions whose pivots fall below
 // `threshold` (relative to the largest) dropped: their coefficients are 0 (rank-revealing).
