@@ -21,7 +21,12 @@ namespace cli_runner {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-inline const std::string kWedge = WEDGE_BINARY_DIR "/apps/wedge/wedge";
+// The program under test: this build's, or WEDGE_PROGRAM's (tools/check.sh runs these tests against the
+// ASan + UBSan build of the program so).
+inline const std::string kWedge = [] {
+  const char* program = std::getenv("WEDGE_PROGRAM");
+  return program != nullptr && *program != '\0' ? std::string(program) : std::string(WEDGE_BINARY_DIR "/apps/wedge/wedge");
+}();
 
 struct Result {
   int code = -1;
@@ -75,9 +80,10 @@ class TempDir {
   // Runs the command in this folder, capturing stdout, stderr and the exit code.
   Result capture(const std::string& command) const {
     const std::string out = (path_ / ".stdout").string(), err = (path_ / ".stderr").string();
-    // WEDGE_FP_TRAPS=1: the program runs with floating-point traps on, as the tests do (tests/main.cpp).
-    const std::string cmd =
-        "cd '" + path_.string() + "' && export WEDGE_FP_TRAPS=1 && " + command + " >'" + out + "' 2>'" + err + "'";
+    // WEDGE_FP_TRAPS=1: the program runs with floating-point traps on, as the tests do (tests/main.cpp),
+    // unless the environment says 0.
+    const std::string cmd = "cd '" + path_.string() + "' && export WEDGE_FP_TRAPS=${WEDGE_FP_TRAPS:-1} && " + command +
+                            " >'" + out + "' 2>'" + err + "'";
     const int status = std::system(cmd.c_str());
     Result r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -3,10 +3,18 @@
 #pragma once
 
 #include <cfenv>
+#include <cstdlib>
+#include <cstring>
 
 namespace fp_traps {
 
 constexpr int kTrapped = FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW;
+
+// Unless WEDGE_FP_TRAPS=0 (tests/main.cpp says when).
+inline bool requested() {
+  const char* value = std::getenv("WEDGE_FP_TRAPS");
+  return value == nullptr || std::strcmp(value, "0") != 0;
+}
 
 inline void enable() {
   std::feclearexcept(FE_ALL_EXCEPT);

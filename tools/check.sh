@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The checks, each build in its own folder (docs/testing.md says what each covers):
+#   release    Release (gcc): the whole suite, with floating-point traps on.
+#   asan       The program, the replay runtime and the fuzz targets built with ASan + UBSan (clang): every
+#              test of the program (the [cli] tests: each shipped scene's and recording's state hash, the
+#              importers, replays, `wedge xr` over the runtime) run against that build, and a short run
+#              of each fuzz target from its seeds. Needs `release` first (its tests drive the program).
+#   asan-full  The whole suite built and run under ASan + UBSan (about an hour on 2 cores).
+#   tsan       The multi-threaded step's tests (--workers) under ThreadSanitizer.
+# CI runs the default, `release` (the README's test command); `asan` joins it once its first full run is
+# clean (issue 42). Any sanitizer report fails.
+#   tools/check.sh [release|asan|asan-full|tsan]...
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${JOBS:-2}
+stages=("$@")
+[ ${#stages[@]} -gt 0 ] || stages=(release)
+
+# Leaks in the system's own libraries (Mesa's and GLFW's one-time allocations) are not ours.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
+
+sanitized() {  # folder, sanitizers, extra cmake arguments...
+  local dir=$1 sanitize=$2
+  shift 2
+  CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DWEDGE_SANITIZE="$sanitize" -DWEDGE_BUILD_BENCH=OFF "$@"
+}
+
+for stage in "${stages[@]}"; do
+  echo "==== check: $stage ($(date -u +%H:%M:%S))"
+  case $stage in
+    release)
+      cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+      cmake --build build -j"$jobs"
+      ctest --test-dir build --output-on-failure -j"$jobs"
+      ;;
+    asan)
+      sanitized build-asan address,undefined -DWEDGE_BUILD_FUZZERS=ON
+      cmake --build build-asan -j"$jobs" --target wedge wedge_xr_replay fuzz_scene fuzz_inertia fuzz_recording \
+        fuzz_questset_csv fuzz_coremotion_csv fuzz_mouse_script
+      # (WEDGE_FP_TRAPS=0: clang vectorises scalar divisions into packed ones whose unused lane divides
+      # 0 by 0, which a trap cannot tell from a real invalid operation; tests/main.cpp.)
+      WEDGE_FP_TRAPS=0 WEDGE_PROGRAM=$PWD/build-asan/apps/wedge/wedge \
+        ctest --test-dir build --output-on-failure -j"$jobs" -R '^wedge'
+      ctest --test-dir build-asan --output-on-failure -j"$jobs" -R '^fuzz:'
+      ;;
+    asan-full)
+      sanitized build-asan address,undefined -DWEDGE_BUILD_FUZZERS=ON
+      cmake --build build-asan -j"$jobs"
+      WEDGE_FP_TRAPS=0 ctest --test-dir build-asan --output-on-failure -j"$jobs"
+      ;;
+    tsan)
+      sanitized build-tsan thread
+      cmake --build build-tsan -j"$jobs" --target wedge_workers_tests
+      WEDGE_FP_TRAPS=0 ctest --test-dir build-tsan --output-on-failure -j"$jobs"
+      ;;
+    *)
+      echo "tools/check.sh: unknown stage '$stage' (the stages are release, asan, asan-full and tsan)" >&2
+      exit 2
+      ;;
+  esac
+done
+echo "==== check: passed ($(date -u +%H:%M:%S))"
