@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -208,6 +209,36 @@ TEST_CASE("wedge xr: Ctrl-C ends the session cleanly, every file whole", "[cli][
   const wedge::recordings::Recording rec = wedge::recordings::read_recording((dir.path() / "session.jsonl").string());
   CHECK(rec.warnings.empty());  // no torn line
   CHECK(!rec.heads.empty());
+}
+
+// Nothing lost on a crash: --record writes each line whole and flushed as the session goes, so a session
+// killed outright (SIGKILL: no handler runs, nothing is closed) leaves a file whose lines are exactly the
+// first lines of the uninterrupted session's recording (the runtime plays the same stream on the same
+// clock), at most one torn line after them, and whose complete lines replay: `wedge replay` warns about
+// the torn line and reads every other one.
+TEST_CASE("wedge xr --record: a session killed with SIGKILL leaves every complete line, and they replay", "[cli][xr]") {
+  TempDir dir;
+  const std::string scene = (kRoot / "scenes/toy_table_4d.json").string();
+  const std::string xr = runtime_env("recordings/quest2/sample_movement.jsonl") + " $WEDGE xr " + scene + " --headless";
+  const Result full = dir.shell(xr + " --record full.jsonl");
+  REQUIRE(full.code == 0);
+  // Killed once the recording holds 3000 lines (about a quarter of the session), polled every 10 ms.
+  const Result killed = dir.shell(xr + " --record killed.jsonl & n=0; "
+                                  "while [ $(cat killed.jsonl 2>/dev/null | wc -l) -lt 3000 ] && [ $n -lt 6000 ]; do "
+                                  "sleep 0.01; n=$((n+1)); done; kill -KILL $!; wait $!");
+  CHECK(killed.code == 128 + 9);
+  const std::string whole = read_file(dir.path() / "full.jsonl"), cut = read_file(dir.path() / "killed.jsonl");
+  const std::size_t complete = cut.rfind('\n') + 1;  // the complete lines' bytes
+  REQUIRE(std::count(cut.begin(), cut.end(), '\n') >= 3000);
+  REQUIRE(cut.size() < whole.size());  // killed before the end
+  CHECK(whole.compare(0, cut.size(), cut) == 0);  // every byte written, torn tail included, is the full run's
+  const Result replayed = dir.run("replay " + scene + " killed.jsonl --hash");
+  INFO(replayed.err);
+  CHECK(replayed.code == 0);
+  CHECK((complete == cut.size()) == (replayed.err.find("torn last line") == std::string::npos));
+  const wedge::recordings::Recording rec = wedge::recordings::read_recording((dir.path() / "killed.jsonl").string());
+  const auto lines = std::count(cut.begin(), cut.begin() + std::ptrdiff_t(complete), '\n');
+  CHECK(std::ptrdiff_t(1 + rec.hands.size() + rec.heads.size() + rec.motion.size()) == lines);  // header + samples
 }
 
 TEST_CASE("wedge xr: Khronos's core validation layer, loaded, reports nothing", "[cli][xr]") {

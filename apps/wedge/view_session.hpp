@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -47,7 +48,6 @@ class ViewSession {
         h_(scene.timestep),
         world_(scene.make_world(file)) {
     if (!replay_files_.empty()) replay_ = std::make_unique<ReplayInput<N>>(scene_, world_, replay_files_, file_, h_);
-    record_.source = "viewer";
   }
   ViewSession(const ViewSession&) = delete;
   ViewSession& operator=(const ViewSession&) = delete;
@@ -56,6 +56,7 @@ class ViewSession {
   // the viewed slice; and the --events file (`events`; empty: none).
   void start(const slicing::WorldSlices<N>& slices, const std::string& events) {
     slices_ = &slices;
+    if (recording() && !replay_) open_recording();
     if (!replay_) mouse_in_ = mouse_layer();
     // --events: grabs, releases, pulses as `wedge replay --events` writes them
     if (!events.empty()) events_ = std::make_unique<OutputSink>(events);
@@ -83,8 +84,7 @@ class ViewSession {
     if (!replay_files_.empty()) replay_ = std::make_unique<ReplayInput<N>>(scene_, world_, replay_files_, file_, h_);
     mouse_in_.reset();
     if (!replay_) mouse_in_ = mouse_layer();
-    record_.hands.clear();
-    record_.motion.clear();
+    if (writer_) open_recording();  // emptied: it starts again with the new world
     pending_ = 0.0;
   }
 
@@ -126,12 +126,12 @@ class ViewSession {
     log_events(*mouse_in_);
   }
 
-  // On exit: the --events file put in place, the --record recording written.
+  // On exit: the --events file put in place, the --record recording closed (synced).
   void finish() {
     if (events_) events_->commit();
-    if (recording()) {
+    if (writer_) {
       try {
-        recordings::write_recording(record_path_, record_);
+        writer_->close();
       } catch (const Error& e) {
         throw Failure(e.what());
       }
@@ -157,18 +157,18 @@ class ViewSession {
     return session;
   }
 
-  // --record: a frame's accelerometer samples and its right hand, while tracked.
-  void record_frame(const input::InputFrame& f) {
-    record_.motion.insert(record_.motion.end(), f.motion.begin(), f.motion.end());
-    if (!f.hands[1].tracked) return;
-    recordings::HandSample sample;
-    sample.t = f.t;
-    sample.hand = recordings::Hand::Right;
-    sample.pose.position = f.hands[1].position;
-    sample.pose.orientation = f.hands[1].orientation;
-    sample.squeeze = f.hands[1].squeeze;
-    sample.mode4d = f.hands[1].mode4d;
-    record_.hands.push_back(sample);
+  // --record: a frame's accelerometer samples and its right hand, while tracked, each written as a whole,
+  // flushed line (a session killed at any moment leaves every sample before it).
+  void record_frame(const input::InputFrame& f) { writer_->write_frame(f); }
+
+  // (Re)creates the --record file, empty but for its header.
+  void open_recording() {
+    try {
+      writer_.reset();
+      writer_.emplace(record_path_, "viewer");
+    } catch (const Error& e) {
+      throw Failure(e.what());
+    }
   }
 
   // Slice coordinates of the hand -> tracking coordinates of the scene's interaction.
@@ -208,7 +208,7 @@ class ViewSession {
   std::unique_ptr<ReplayInput<N>> replay_;
   std::unique_ptr<input::Session<N>> mouse_in_;  // without recordings: the mouse's
   const slicing::WorldSlices<N>* slices_ = nullptr;  // the viewed slice (from start() on)
-  recordings::Recording record_;                     // --record: the mouse hand (and the phone), written on exit
+  std::optional<recordings::RecordingWriter> writer_;  // --record: the mouse hand (and the phone), line by line
   double pending_ = 0.0;                             // s of simulated time owed to the clock
   std::unique_ptr<OutputSink> events_;               // --events
   PulseDisplay<N> pulses_;
