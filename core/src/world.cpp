@@ -16,17 +16,10 @@
 
 namespace wedge {
 
-namespace {
-template <class M>
-bool finite(const M& m) {
-  return all_finite(m);
-}
-}  // namespace
-
 template <int N>
 Body<N> make_body(const BodyDef<N>& def) {
   const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
-  if (!finite(def.position) || !finite(def.velocity) || !def.rotor.all_finite() ||
+  if (!all_finite(def.position) || !all_finite(def.velocity) || !def.rotor.all_finite() ||
       !def.angular_velocity.all_finite())
     throw Error(who + ": position, rotor and velocities must be finite");
   const Rotor<N> rr = def.rotor * reverse(def.rotor);
@@ -61,7 +54,7 @@ Body<N> make_body(const BodyDef<N>& def) {
     s << who << ": mass must be positive and finite, with a finite inverse (got " << def.mass << ")";
     throw Error(s.str());
   }
-  if (!finite(def.inertia) || (def.inertia - def.inertia.transpose()).norm() > 1e-9 * def.inertia.norm())
+  if (!all_finite(def.inertia) || (def.inertia - def.inertia.transpose()).norm() > 1e-9 * def.inertia.norm())
     throw Error(who + ": inertia must be a finite symmetric matrix");
   const Eigen::VectorXd eig = linalg::symmetric_eigenvalues(def.inertia);
   if (!(eig[0] > 1e-12 * eig[kBiv<N> - 1]))
