@@ -207,6 +207,9 @@ TEST_CASE("invalid contact settings are refused with a clear error", "[world][co
   refused([](ContactSettings& c) { c.static_slip_speed = INFINITY; }, "static_slip_speed");
   refused([](ContactSettings& c) { c.position_correction = 0.0; }, "position_correction");
   refused([](ContactSettings& c) { c.contact_margin = -0.01; }, "contact_margin");
+  refused([](ContactSettings& c) { c.continuous_gap = -0.001; }, "continuous_gap");
+  refused([](ContactSettings& c) { c.max_turn = 0.0; }, "max_turn");
+  refused([](ContactSettings& c) { c.max_turn = INFINITY; }, "max_turn");
   WorldSettings<3> fine;
   fine.contact.shock_tolerance = 0.0;  // no early stop by tolerance: allowed
   fine.contact.contact_tolerance = 0.0;

@@ -95,6 +95,8 @@ namespace {
 void check_contact_settings(const ContactSettings& c) {
   auto finite_nonneg = [](double x) { return std::isfinite(x) && x >= 0.0; };
   if (!finite_nonneg(c.contact_margin)) throw Error("contact.contact_margin must be finite and >= 0 (m)");
+  if (!finite_nonneg(c.continuous_gap)) throw Error("contact.continuous_gap must be finite and >= 0 (m)");
+  if (!(finite_nonneg(c.max_turn) && c.max_turn > 0.0)) throw Error("contact.max_turn must be finite and > 0 (rad per step)");
   if (c.collision_iterations < 0 || c.contact_iterations < 0 || c.shock_iterations < 0 || c.position_iterations < 0)
     throw Error("contact iteration counts must be >= 0");
   if (c.substeps < 1 || c.substeps > 64) throw Error("contact.substeps must be in 1..64");
@@ -370,6 +372,8 @@ void World<N>::step(double h) {
     profile_.integrate_positions = solver.lap();
   }
   StageClock clock;
+  contact::solve_continuous(*contact_, bodies_, shapes_, materials_, settings_.contact, h);
+  profile_.continuous = clock.lap();
   update_islands(h);
   profile_.islands = clock.lap();
   report_contact_events();

@@ -137,6 +137,9 @@ ContactSettings read_contact_settings(const Node& node) {
   c.linear_slop = read_ranged(obj, "linear_slop", c.linear_slop, 0.0, 1e3, "in [0, 1000] m");
   c.position_correction = read_ranged(obj, "position_correction", c.position_correction, 1e-9, 1.0, "in (0, 1]");
   c.position_iterations = read_count(obj, "position_iterations", c.position_iterations);
+  c.continuous = obj.boolean_or("continuous", c.continuous);
+  c.continuous_gap = read_ranged(obj, "continuous_gap", c.continuous_gap, 0.0, 1e3, "in [0, 1000] m");
+  c.max_turn = read_ranged(obj, "max_turn", c.max_turn, 1e-9, 1e3, "in (0, 1000] rad per step");
   c.allow_sleep = obj.boolean_or("allow_sleep", c.allow_sleep);
   c.sleep_linear_speed = read_ranged(obj, "sleep_linear_speed", c.sleep_linear_speed, 0.0, 1e6, ">= 0 m/s");
   c.time_to_sleep = read_ranged(obj, "time_to_sleep", c.time_to_sleep, 0.0, 1e9, ">= 0 s");

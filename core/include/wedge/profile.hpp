@@ -17,6 +17,7 @@ struct StepProfile {
   double integrate_positions = 0.0;  // s, every sub-step's position update
   double relax = 0.0;                // s, every sub-step's relax pass
   double finish = 0.0;               // s, impulses kept, restitution, velocities stored
+  double continuous = 0.0;           // s, fast bodies swept against static ones
   double islands = 0.0;              // s, islands and sleep
   double events = 0.0;               // s, contact begin and end events
 };

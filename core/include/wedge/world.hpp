@@ -5,6 +5,7 @@
 //   find_contacts         broad phase, narrow phase at the current positions, the step's constraints
 //   soft_step             per sub-step of h / substeps: integrate_velocities, solve (soft contacts),
 //                         integrate_positions, relax; then restitution
+//   solve_continuous      fast bodies swept against static shapes, put back at the time of impact
 //   update_islands        islands of touching bodies; still islands fall asleep
 //   report_contact_events pairs that began or stopped touching
 //   clear_forces
@@ -15,6 +16,7 @@
 //   process_contacts      restitution 0, then shock propagation up the contact graph, then
 //                         split-impulse position correction
 //   integrate_positions   x += h v, R <- exp(-h w / 2) R, then rotor repair
+// and then solve_continuous as above.
 // Input is applied only between steps, through the apply_* calls, grabs and set_gravity (which wake the
 // bodies they move). Bodies are
 // stored in creation order and every loop runs in that order, so the same inputs give bit-identical

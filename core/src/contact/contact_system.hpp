@@ -269,6 +269,7 @@ struct ContactState {
   std::vector<int> proxy;                 // per body: broad-phase proxy, -1 without one
   std::vector<Aabb<N>> box;               // per body: tight world box at the last update
   std::vector<double> radius;             // per body: m, farthest point of its shape from the centre of mass
+  std::vector<double> inradius;           // per body: m, nearest point of its surface to the centre of mass
   std::vector<std::uint32_t> halfspaces;  // bodies whose shape is a half-space
   std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
   // The half-space pairs of this step and of the last (when neither they nor the broad phase's
@@ -281,6 +282,10 @@ struct ContactState {
   // once per step instead of once per pair side (a pyramid's box has up to six pairs).
   std::vector<Transform<N>> pose;
   std::vector<double> speed;
+  // Per body, where the step began (continuous collision sweeps from there).
+  std::vector<Vec<N>> start_center;
+  std::vector<Rotor<N>> start_rotor;
+  std::vector<int> continuous_hits;  // scratch: the static bodies a swept body may reach
   std::vector<unsigned char> narrow_wakes;  // per narrow_list entry: it touches a sleeping body
 
   std::vector<SolverBody<N>> solver_bodies;  // per body
@@ -427,6 +432,11 @@ void find_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const S
                    StepProfile* profile = nullptr);
 template <int N>
 void report_events(ContactState<N>& state);
+// continuous.cpp: after the solver, each fast dynamic body swept against the static shapes on its way,
+// and put back where it would first reach one (ContactSettings::continuous).
+template <int N>
+void solve_continuous(ContactState<N>& state, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                      const std::vector<Material>& materials, const ContactSettings& settings, double h);
 // solver.cpp
 template <int N>
 void process_collisions(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
