@@ -103,15 +103,13 @@ struct ContactSettings {
   int position_iterations = 4;
   // Continuous collision against static bodies (contact/continuous.cpp): a dynamic body whose points may
   // have moved more than half its inradius in the step is swept from its pose at the step's start to
-  // its pose at the end against the static shapes on its way (time of impact, collision/time_of_impact);
-  // where it would reach one it is put back at the time of impact, continuous_gap short of it, its
-  // velocities kept, and the next step's contacts take it from there. A shape it already touched (within
-  // continuous_gap) at the start is left to those contacts. Off: fast bodies rely on the speculative
-  // margin alone, which lets a thin plate spinning at 100 rad/s pass through a 1 cm wall.
-  // Off by default for now: on, it also takes over ordinary landings of thin bodies from the soft
-  // contacts (the shipped scenes' hashes change, and the toy-table soak ends with more motion), which
-  // is not yet understood (issue 42).
-  bool continuous = false;
+  // its pose at the end against the static shapes on its way (time of impact, collision/time_of_impact).
+  // If it reached one and the contacts let it through (it ends beyond the wall, or in it deeper than
+  // continuous_gap), it is put back at the time of impact, continuous_gap short of the wall, and
+  // collides there; the next step's contacts take it from there. A shape it already touched at the
+  // start is left to the contacts. Off: fast bodies rely on the speculative margin alone, which lets a
+  // thin plate spinning at 100 rad/s pass through a 1 cm wall.
+  bool continuous = true;
   double continuous_gap = 0.005;  // m
   // rad: the most a body may turn in one step; faster spins are scaled down to it after the solver
   // (377 rad/s at 120 Hz). The sub-steps' rotation and gyroscopic term gain energy beyond a few radians

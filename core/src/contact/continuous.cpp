@@ -5,22 +5,26 @@
 // within the step (a thin plate flung end over end), and the solver stops only the points it was given:
 // the plate ends the step inside or beyond a thin wall. So, as Box2D v3 does for its fast bodies, each
 // dynamic body whose points may have moved more than half its inradius is swept from its pose at the
-// step's start to its pose at the end against every static shape near its path (time_of_impact), and if
-// it would reach one it is put back at the earliest time of impact, continuous_gap short of it (its
-// angular velocity turned back with it), and
-// collides there: an impulse at its nearest point stops that point's approach (Mirtich's impulse-based
-// time of impact). The next step's contacts, found at that pose, take it from there. The rest of the
-// step after the impact is lost, which only a body fast enough to cross its own size in a step notices.
+// step's start to its pose at the end against every static shape near its path (time_of_impact). If it
+// reached one and the contacts let it through (at the end it lies beyond the wall, or in it deeper than
+// continuous_gap), it is put back at the earliest time of impact, continuous_gap short of the wall (its
+// angular velocity turned back with it), and collides there: an impulse at its nearest point stops that
+// point's approach (Mirtich's impulse-based time of impact). The next step's contacts, found at that
+// pose, take it from there. The rest of the step after the impact is lost, which only a body fast
+// enough to cross its own size in a step notices. Bodies the contacts stopped, as in ordinary landings,
+// are left where the contacts put them.
 //
-// A static shape the body was already touching at the start (within a tenth of the gap) is left to the
-// contacts: a box sliding fast along the ground must not be held back by the ground under it. One it
-// began nearer than the gap it is stopped half as far from.
+// A static shape the body was already touching at the start (within a tenth of the gap) cannot be swept
+// against (the gap is already gone): if the contacts let the body through it, the body goes back to
+// where it began the step. A box sliding fast along the ground, which the contacts hold on it, is not
+// held back. One it began nearer than the gap it is stopped half as far from.
 #include <algorithm>
 #include <cmath>
 
 #include "contact/contact_system.hpp"
 #include "instantiate.hpp"
 #include "wedge/collision/aabb.hpp"
+#include "wedge/collision/narrow_phase.hpp"
 #include "wedge/collision/time_of_impact.hpp"
 #include "wedge/ga/products.hpp"
 
@@ -46,7 +50,7 @@ Aabb<N> swept_box(const Sweep<N>& sweep, double radius) {
                  Vec<N>(sweep.c0.cwiseMax(sweep.c1).array() + radius)};
 }
 
-// The first static shape the swept body reaches, where and when (t = 1: none).
+// A static shape the swept body reaches, where and when (t = 1: none).
 template <int N>
 struct Impact {
   double t = 1.0;
@@ -55,25 +59,60 @@ struct Impact {
   Vec<N> normal = Vec<N>::Zero();  // unit, from the body towards the wall
 };
 
-// The earliest impact of the swept body i with any static body in `hits`. The body is stopped
-// continuous_gap short of a shape, or half as far from it as it began if that is nearer; a shape it
-// began touching (within a tenth of the gap) is left to the contacts.
+// Whether the soft contacts let the body through the wall it reached in the sweep: at the end of the
+// step it lies beyond it (its nearest direction to the wall has turned against the one at the impact),
+// or, for a wall it reached within the step, in it deeper than continuous_gap or a quarter of the
+// thinner one's inradius (a body half way through a 1 cm wall is in it by 5 mm at most). A body the
+// contacts stopped or turned away, as they do for ordinary landings, is left where they put it, and so
+// is one that was touching the wall from the start and only sank into it (a ball rolling fast on the
+// ground): that is the contacts' to push out.
 template <int N>
-Impact<N> earliest_impact(const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int i, const Sweep<N>& sweep,
-                          const std::vector<int>& hits, const ContactSettings& settings) {
+bool contacts_failed(const ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int i,
+                     const Impact<N>& hit, const ContactSettings& settings) {
+  const Body<N>& b = bodies[i];
+  const Body<N>& wall = bodies[hit.wall];
+  const Transform<N> tb{b.position(), to_matrix(b.rotor)};
+  const Transform<N> tw{wall.position(), to_matrix(wall.rotor)};
+  const Manifold<N> m = collide(*shapes[i], tb, *shapes[hit.wall], tw);  // (normal from the body to the wall)
+  if (m.normal.dot(hit.normal) < 0.0) return true;
+  if (hit.t == 0.0) return false;  // (touching from the start: the contacts' own penetration, not a pass)
+  double thin = s.inradius[i];
+  if (shapes[hit.wall]->bounded()) thin = std::min(thin, s.inradius[hit.wall]);
+  return m.intersecting && m.depth > std::min(settings.continuous_gap, 0.25 * thin);
+}
+
+// The earliest impact of the swept body i with a static body in `hits` that the contacts let it through
+// (t = 1: none). The body is stopped continuous_gap short of a shape, or half as far from it as it
+// began if that is nearer. A shape it began touching (within a tenth of the gap) gives an impact at
+// t = 0, along the contact's normal then: if the contacts let the body through, it goes back to where
+// it began the step.
+template <int N>
+Impact<N> first_failed_impact(const ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                              int i, const Sweep<N>& sweep, const std::vector<int>& hits,
+                              const ContactSettings& settings) {
   const Transform<N> start = sweep.transform(0.0);
   Impact<N> first;
   for (const int j : hits) {
     const Body<N>& wall = bodies[j];
     const Sweep<N> still = Sweep<N>::still(wall.center, wall.rotor, wall.local_center);
-    const double d0 = shape_distance(*shapes[i], start, *shapes[j], still.transform(0.0)).distance;
-    if (d0 < 0.1 * settings.continuous_gap) continue;
-    TimeOfImpactSettings toi;
-    toi.target = std::min(settings.continuous_gap, 0.5 * d0);
-    toi.tolerance = 0.25 * toi.target;
-    const TimeOfImpact<N> impact = time_of_impact(*shapes[i], sweep, *shapes[j], still, toi);
-    if ((impact.state == ImpactState::Hit || impact.state == ImpactState::OutOfIterations) && impact.t < first.t)
-      first = Impact<N>{impact.t, j, impact.point_a, impact.normal};
+    const Transform<N> at = still.transform(0.0);
+    const ShapeDistance<N> d0 = shape_distance(*shapes[i], start, *shapes[j], at);
+    Impact<N> impact;
+    if (d0.distance < 0.1 * settings.continuous_gap) {
+      CollisionSettings near;
+      near.contact_margin = settings.continuous_gap;  // (points up to the gap apart)
+      const Manifold<N> m = collide(*shapes[i], start, *shapes[j], at, near);
+      if (m.count == 0) continue;
+      impact = Impact<N>{0.0, j, m.points[0].point, m.normal};
+    } else {
+      TimeOfImpactSettings toi;
+      toi.target = std::min(settings.continuous_gap, 0.5 * d0.distance);
+      toi.tolerance = 0.25 * toi.target;
+      const TimeOfImpact<N> r = time_of_impact(*shapes[i], sweep, *shapes[j], still, toi);
+      if (r.state != ImpactState::Hit && r.state != ImpactState::OutOfIterations) continue;
+      impact = Impact<N>{r.t, j, r.point_a, r.normal};
+    }
+    if (impact.t < first.t && contacts_failed(s, bodies, shapes, i, impact, settings)) first = impact;
   }
   return first;
 }
@@ -128,7 +167,7 @@ void sweep_body(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shapes<N
   });
   for (const std::uint32_t j : s.halfspaces) hits.push_back(int(j));
   std::sort(hits.begin(), hits.end());
-  const Impact<N> hit = earliest_impact(bodies, shapes, i, sweep, hits, settings);
+  const Impact<N> hit = first_failed_impact(s, bodies, shapes, i, sweep, hits, settings);
   if (hit.t >= 1.0) return;
   // Put back, turning the angular velocity back with the body: the same in the body frame, so the
   // kinetic energy stays as it was (the world inertia turns with the body).
