@@ -198,6 +198,11 @@ TEST_CASE("Quest import: bad files name the file, the line and the problem", "[r
        "HeadOrientation{W,X,Y,Z} is not a unit quaternion (norm 0"},
       {H + a + "\"0" + row("0", "2").substr(1) + "\n", 3, "a quoted field is still open at the end of the file"},
       {H + a + "\"0\"1" + row("0", "2").substr(1) + "\n", 3, "malformed CSV quoting"},
+      // A quoted field may hold a line break and any byte: the message quotes it on one line, escaped and
+      // cut at 40 characters (a fuzzing finding: the refusal ran over several lines).
+      {H + a + "\"1\n2\t\x01\"" + row("0", "2").substr(1) + "\n", 3, "TouchButtons is not a finite number ('1\\n2\\t\\x01')"},
+      {H + a + "\"" + std::string(50, '7') + "x\"" + row("0", "2").substr(1) + "\n", 3,
+       "('" + std::string(40, '7') + "...')"},
   };
   for (const Case& c : cases) {
     const std::string path = (dir / "bad.csv").string();
@@ -210,6 +215,7 @@ TEST_CASE("Quest import: bad files name the file, the line and the problem", "[r
       const std::string what = e.what();
       CHECK(what.rfind(c.line > 0 ? path + ":" + std::to_string(c.line) + ": " : path + ": ", 0) == 0);
       CHECK(what.find(c.problem) != std::string::npos);
+      CHECK(what.find('\n') == std::string::npos);  // one line
     }
   }
   CHECK_THROWS_WITH(import_questset_csv((dir / "missing.csv").string()), Catch::Contains("missing.csv: cannot open"));

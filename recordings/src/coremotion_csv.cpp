@@ -39,7 +39,7 @@ std::vector<CoreMotionSample> read_coremotion_csv(const std::string& path) {
     for (std::size_t k = 0; k < names.size(); ++k) {
       const std::string& text = fields[column[k]];
       if (!parse_finite(text, v[k]))
-        fail(number, std::string(names[k]) + " is not a finite number ('" + text + "')");
+        fail(number, std::string(names[k]) + " is not a finite number ('" + printable(text) + "')");
     }
     CoreMotionSample s;
     s.time = v[0];

@@ -19,13 +19,16 @@ namespace {
 struct Collector {
   std::vector<CsvRecord> records;
   CsvRecord current;
-  int line = 1;  // the line being fed to the parser
+  int line = 1;        // the line being fed to the parser
+  int start_line = 1;  // the last line fed while the parser was between records
   bool in_record = false;
 
   static void field(void* text, std::size_t size, void* data) {
     auto& self = *static_cast<Collector*>(data);
     if (!self.in_record) {
-      self.current.line = self.line;
+      // (A record's first field may end lines after it began, inside quotes: the record starts on the
+      // last line that was fed with no record begun.)
+      self.current.line = self.start_line;
       self.in_record = true;
     }
     self.current.fields.emplace_back(static_cast<const char*>(text), size);
@@ -38,6 +41,9 @@ struct Collector {
     self.in_record = false;
   }
 };
+
+// libcsv's parser state between records (csv_parser::pstate; ROW_NOT_BEGUN in libcsv.c).
+constexpr int kRowNotBegun = 0;
 
 // libcsv's parser, freed on every path out.
 struct Parser {
@@ -71,6 +77,7 @@ std::vector<CsvRecord> read_csv(const std::string& path) {
     if (std::memchr(text.data() + begin, '\0', end - begin) != nullptr)
       fail(out.line, "a NUL byte (not a text file)");
     const std::size_t size = end - begin;
+    if (parser.p.pstate == kRowNotBegun) out.start_line = out.line;
     if (csv_parse(&parser.p, text.data() + begin, size, Collector::field, Collector::record, &out) != size)
       fail(out.line, std::string("malformed CSV quoting (") + csv_strerror(csv_error(&parser.p)) +
                          "): a quote inside an unquoted field, or text after a closing quote");
@@ -87,6 +94,30 @@ bool parse_finite(const std::string& text, double& value) {
   errno = 0;
   value = std::strtod(text.c_str(), &end);
   return !text.empty() && end == text.c_str() + text.size() && errno != ERANGE && std::isfinite(value);
+}
+
+std::string printable(const std::string& text) {
+  constexpr std::size_t kShown = 40;
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kShown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20 || c >= 0x7f) {
+      static const char* const kHex = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    } else {
+      out += char(c);
+    }
+  }
+  if (text.size() > kShown) out += "...";
+  return out;
 }
 
 }  // namespace wedge::recordings

@@ -52,8 +52,8 @@ Recording import_questset_csv(const std::string& path) {
     if (header[c].empty()) continue;
     const std::size_t k = std::find(kQuestColumns.begin(), kQuestColumns.end(), header[c]) - kQuestColumns.begin();
     if (k == kQuestColumns.size())
-      fail(header_line, "unknown column '" + header[c] + "' (questset has 27 known columns)");
-    if (column[k] != c) fail(header_line, "column '" + header[c] + "' appears twice");
+      fail(header_line, "unknown column '" + printable(header[c]) + "' (questset has 27 known columns)");
+    if (column[k] != c) fail(header_line, "column '" + printable(header[c]) + "' appears twice");
   }
 
   Recording r;
@@ -69,17 +69,17 @@ Recording import_questset_csv(const std::string& path) {
     for (std::size_t k = 0; k < kQuestColumns.size(); ++k) {
       const std::string& text = fields[column[k]];
       if (!parse_finite(text, v[k]))
-        fail(number, std::string(kQuestColumns[k]) + " is not a finite number ('" + text + "')");
+        fail(number, std::string(kQuestColumns[k]) + " is not a finite number ('" + printable(text) + "')");
     }
     if (v[kButtons] < 0 || v[kButtons] > 4294967295.0 || v[kButtons] != std::floor(v[kButtons]))
-      fail(number, "TouchButtons is not a button bit mask ('" + fields[column[kButtons]] + "')");
+      fail(number, "TouchButtons is not a button bit mask ('" + printable(fields[column[kButtons]]) + "')");
     for (const int k : {kLeftIndex, kRightIndex, kLeftHand, kRightHand})
       if (!(v[k] >= 0.0 && v[k] <= 1.0))
-        fail(number, std::string(kQuestColumns[k]) + " = " + fields[column[k]] + " is outside [0, 1]");
+        fail(number, std::string(kQuestColumns[k]) + " = " + printable(fields[column[k]]) + " is outside [0, 1]");
     if (r.heads.empty()) {
       t0 = v[kTime];
     } else if (v[kTime] < last_time) {
-      fail(number, "time goes backwards (" + fields[column[kTime]] + " after " + last_time_text + ")");
+      fail(number, "time goes backwards (" + printable(fields[column[kTime]]) + " after " + printable(last_time_text) + ")");
     }
     last_time = v[kTime];
     last_time_text = fields[column[kTime]];
