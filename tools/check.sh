@@ -43,8 +43,14 @@ for stage in "${stages[@]}"; do
         fuzz_questset_csv fuzz_coremotion_csv fuzz_mouse_script
       # (WEDGE_FP_TRAPS=0: clang vectorises scalar divisions into packed ones whose unused lane divides
       # 0 by 0, which a trap cannot tell from a real invalid operation; tests/main.cpp.)
+      windowed='^wedge (view|xr: each eye)'
       WEDGE_FP_TRAPS=0 WEDGE_PROGRAM=$PWD/build-asan/apps/wedge/wedge \
-        ctest --test-dir build --output-on-failure -j"$jobs" -R '^wedge'
+        ctest --test-dir build --output-on-failure -j"$jobs" -R '^wedge' -E "$windowed"
+      # The windows (GLX under Xvfb) without leak checking: Mesa's GLX driver is loaded with dlopen and
+      # closed before exit, so LeakSanitizer cannot name the library its one-time allocations (240 bytes)
+      # came from and no suppression can match them. ASan and UBSan still check every access.
+      ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 WEDGE_FP_TRAPS=0 WEDGE_PROGRAM=$PWD/build-asan/apps/wedge/wedge \
+        ctest --test-dir build --output-on-failure -j"$jobs" -R "$windowed"
       ctest --test-dir build-asan --output-on-failure -j"$jobs" -R '^fuzz:'
       ;;
     asan-full)
