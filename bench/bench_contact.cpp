@@ -3,6 +3,7 @@
 //   Pile3D_{Wedge,Bullet}/sleep_{off,on}     1,000 boxes dropped in a grid onto the ground (3D)
 //   Pile4D_Wedge/<count>/sleep_{off,on}      100, 1,000 and 10,000 tesseracts dropped likewise (4D)
 //   Pile4D_Wedge/1000/settled                the 1,000 pile with sleeping on after 30 s, once settled
+//   .../continuous_off                       the same steps without the continuous-collision stage
 //   PaperScene/<name>                        the paper's figure scenes, scenes/fig*_4d.json
 //   Workers_HandOver                         one empty job handed to a second thread and back (wall time)
 // One benchmark iteration is one step, so the time per iteration is the CPU time of one World::step (or
@@ -120,9 +121,10 @@ int dynamic_count(const World<N>& w) {
 
 // Times `state.iterations()` steps of a copy of the settled world.
 template <int N>
-void time_wedge(benchmark::State& state, const World<N>& start, double h, int workers = 1) {
+void time_wedge(benchmark::State& state, const World<N>& start, double h, int workers = 1, bool continuous = true) {
   World<N> w = start;
   w.settings().workers = workers;
+  w.settings().contact.continuous = continuous;
   set_start_counters(state, w, awake_count(w), dynamic_count(w));
   for (auto _ : state) w.step(h);
   state.counters["pairs"] = double(w.contacts().size());
@@ -138,13 +140,14 @@ double top_angle(const World<2>& w, BodyId id) {
   return std::atan2(r(1, 0), r(0, 0));
 }
 
-void Pyramid2D_Wedge(benchmark::State& state, bool sleep, int workers = 1) {
+void Pyramid2D_Wedge(benchmark::State& state, bool sleep, int workers = 1, bool continuous = true) {
   const World<2> initial = wedge_pyramid(kPyramidRows, sleep);
   const World<2>& start = settled<2>(sleep ? "pyramid/on" : "pyramid/off", kPyramidWarmup,
                                      [&] { return wedge_pyramid(kPyramidRows, sleep); });
   const BodyId top{std::uint32_t(initial.body_count() - 1)};
   World<2> w = start;
   w.settings().workers = workers;
+  w.settings().contact.continuous = continuous;
   set_start_counters(state, w, awake_count(w), dynamic_count(w));
   state.counters["top_dy"] = w.body(top).center[1] - initial.body(top).center[1];
   state.counters["top_dx"] = w.body(top).center[0] - initial.body(top).center[0];
@@ -176,6 +179,9 @@ BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_off, false)->Iterations(kPyramidTimed)-
 BENCHMARK_CAPTURE(Pyramid2D_Box2D, sleep_off, false)->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_on, true)->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pyramid2D_Box2D, sleep_on, true)->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
+// The same steps without the continuous-collision stage (ContactSettings::continuous): what it costs.
+BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_off/continuous_off, false, 1, false)
+    ->Iterations(kPyramidTimed)->Unit(benchmark::kMillisecond);
 // Both cores (WorldSettings::workers = 2): wall time, since the process's CPU time counts both threads.
 BENCHMARK_CAPTURE(Pyramid2D_Wedge, sleep_off/workers:2, false, 2)
     ->Iterations(kPyramidTimed)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -191,8 +197,8 @@ const World<N>& settled_pile(int count, bool sleep, int warmup, bool until_aslee
   return settled<N>(key, warmup, [&] { return wedge_pile<N>(count, sleep); }, until_asleep);
 }
 
-void Pile3D_Wedge(benchmark::State& state, bool sleep, int workers = 1) {
-  time_wedge<3>(state, settled_pile<3>(kPileCount, sleep, kPileWarmup), kDt, workers);
+void Pile3D_Wedge(benchmark::State& state, bool sleep, int workers = 1, bool continuous = true) {
+  time_wedge<3>(state, settled_pile<3>(kPileCount, sleep, kPileWarmup), kDt, workers, continuous);
 }
 
 void Pile3D_Bullet(benchmark::State& state, bool sleep) {
@@ -210,6 +216,8 @@ void Pile3D_Bullet(benchmark::State& state, bool sleep) {
 
 BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_off, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile3D_Bullet, sleep_off, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_off/continuous_off, false, 1, false)
+    ->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_on, true)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile3D_Bullet, sleep_on, true)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_off/workers:2, false, 2)
@@ -217,13 +225,15 @@ BENCHMARK_CAPTURE(Pile3D_Wedge, sleep_off/workers:2, false, 2)
 
 // ------------------------------------------------------------------ 3, 4. 4D piles
 
-void Pile4D_Wedge(benchmark::State& state, int count, bool sleep, int workers = 1) {
+void Pile4D_Wedge(benchmark::State& state, int count, bool sleep, int workers = 1, bool continuous = true) {
   const bool big = count >= kBigPileCount;
-  time_wedge<4>(state, settled_pile<4>(count, sleep, big ? kBigPileWarmup : kPileWarmup), kDt, workers);
+  time_wedge<4>(state, settled_pile<4>(count, sleep, big ? kBigPileWarmup : kPileWarmup), kDt, workers, continuous);
 }
 
 BENCHMARK_CAPTURE(Pile4D_Wedge, 100/sleep_off, 100, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_off, 1000, false)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_off/continuous_off, 1000, false, 1, false)
+    ->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_on, 1000, true)->Iterations(kPileTimed)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(Pile4D_Wedge, 1000/sleep_off/workers:2, 1000, false, 2)
     ->Iterations(kPileTimed)->UseRealTime()->Unit(benchmark::kMillisecond);

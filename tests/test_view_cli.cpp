@@ -5,6 +5,7 @@
 #include <png.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <sstream>
@@ -185,6 +186,37 @@ TEST_CASE("wedge view --record: a mouse session replays bit for bit with wedge r
   CHECK(events.find("\"type\":\"grab\"") != std::string::npos);
   CHECK(events.find("\"body\":\"r\"") != std::string::npos);
   CHECK(events.find("\"type\":\"release\"") != std::string::npos);
+}
+
+// Nothing lost on a crash, as for `wedge xr --record` (test_xr_cli.cpp): a viewer session recording a
+// scripted mouse and killed with SIGKILL once its file holds 150 lines leaves bytes that are exactly the
+// start of the same session run to its end (the script and --frames fix every step), and its complete
+// lines replay.
+TEST_CASE("wedge view --record: a session killed with SIGKILL leaves every complete line, and they replay",
+          "[cli][view][replay]") {
+  TempDir dir;
+  dir.write("s.json", scene(0.0));
+  std::string script;  // the cursor sweeping, the left button pressed for half of every 100 frames
+  for (int f = 2; f < 300; ++f)
+    script += mouse_line(f, 400 + f % 50, 200, f % 100 < 50 ? ",\"left\":true" : "");
+  dir.write("m.jsonl", script);
+  const std::string view = "view s.json --mouse m.jsonl --frames 300 --size 800x450 --record ";
+  const Result full = under_xvfb(dir, view + "full.jsonl");
+  INFO(full.err);
+  REQUIRE(full.code == 0);
+  const Result killed = under_xvfb(dir, view + "killed.jsonl & p=$!; n=0; "
+                                          "while [ $(cat killed.jsonl 2>/dev/null | wc -l) -lt 150 ] && [ $n -lt 6000 ]; do "
+                                          "sleep 0.01; n=$((n+1)); done; kill -KILL $p; wait $p; (exit $?)");
+  CHECK(killed.code == 128 + 9);
+  const std::string whole = read_file(dir.path() / "full.jsonl"), cut = read_file(dir.path() / "killed.jsonl");
+  REQUIRE(std::count(cut.begin(), cut.end(), '\n') >= 150);
+  REQUIRE(cut.size() < whole.size());                // killed before the end
+  CHECK(whole.compare(0, cut.size(), cut) == 0);     // every byte written is the full run's
+  const std::size_t complete = cut.rfind('\n') + 1;  // the complete lines' bytes
+  const Result replayed = dir.run("replay s.json killed.jsonl --hash");
+  INFO(replayed.err);
+  CHECK(replayed.code == 0);
+  CHECK((complete == cut.size()) == (replayed.err.find("torn last line") == std::string::npos));
 }
 
 TEST_CASE("wedge view --replay draws the recorded hand as a marker", "[cli][view][replay]") {
