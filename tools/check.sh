@@ -7,8 +7,7 @@
 #              of each fuzz target from its seeds. Needs `release` first (its tests drive the program).
 #   asan-full  The whole suite built and run under ASan + UBSan (about an hour on 2 cores).
 #   tsan       The multi-threaded step's tests (--workers) under ThreadSanitizer.
-# CI runs the default, `release` (the README's test command); `asan` joins it once its first full run is
-# clean (issue 42). Any sanitizer report fails.
+# CI runs `release asan` (the README's test command). Any sanitizer report fails.
 #   tools/check.sh [release|asan|asan-full|tsan]...
 set -euo pipefail
 cd "$(dirname "$0")/.."
