@@ -1,8 +1,7 @@
-// The test runner: Catch2's, with floating-point traps on. Invalid operations (0/0, inf - inf, sqrt(-1)),
-// division by zero and overflow raise SIGFPE where they happen, so a NaN or an infinity born anywhere in a
-// step fails the test at its source instead of surfacing later as a wrong number. Underflow and inexact are
-// left off: gradual underflow and rounding are ordinary arithmetic. Third-party code that computes with
-// infinities on purpose runs inside fp_traps::Suspended (support/fp_traps.hpp).
+// The test runner: Catch2's, with floating-point traps on (wedge/fp_env.hpp), so a NaN or an infinity born
+// anywhere in a step fails the test at its source instead of surfacing later as a wrong number.
+// Third-party code that computes with infinities on purpose runs inside fp_traps::Suspended
+// (support/fp_traps.hpp).
 //
 // WEDGE_FP_TRAPS=0 leaves the traps off, here and in the programs the tests run. The clang sanitizer
 // build sets it (tools/check.sh): clang assumes floating-point operations never trap and vectorises a
@@ -14,6 +13,6 @@
 #include "fp_traps.hpp"
 
 int main(int argc, char* argv[]) {
-  if (fp_traps::requested()) fp_traps::enable();
+  if (fp_traps::requested()) wedge::trap_fp_exceptions();
   return Catch::Session().run(argc, argv);
 }

@@ -7,8 +7,11 @@
 #              of each fuzz target from its seeds. Needs `release` first (its tests drive the program).
 #   asan-full  The whole suite built and run under ASan + UBSan (about an hour on 2 cores).
 #   tsan       The multi-threaded step's tests (--workers) under ThreadSanitizer.
+#   debug      The program built Debug (gcc -O0): every shipped scene's and recording's state hash, in
+#              each lane width, must come out as the Release build's (determinism across builds). Needs
+#              `release` first.
 # CI runs `release asan` (the README's test command). Any sanitizer report fails.
-#   tools/check.sh [release|asan|asan-full|tsan]...
+#   tools/check.sh [release|asan|asan-full|tsan|debug]...
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${JOBS:-2}
@@ -62,8 +65,13 @@ for stage in "${stages[@]}"; do
       cmake --build build-tsan -j"$jobs" --target wedge_workers_tests
       WEDGE_FP_TRAPS=0 ctest --test-dir build-tsan --output-on-failure -j"$jobs"
       ;;
+    debug)
+      cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DWEDGE_BUILD_BENCH=OFF -DWEDGE_BUILD_TESTS=OFF
+      cmake --build build-debug -j"$jobs" --target wedge
+      WEDGE_PROGRAM=$PWD/build-debug/apps/wedge/wedge ctest --test-dir build --output-on-failure -j"$jobs" -R 'state hashes'
+      ;;
     *)
-      echo "tools/check.sh: unknown stage '$stage' (the stages are release, asan, asan-full and tsan)" >&2
+      echo "tools/check.sh: unknown stage '$stage' (the stages are release, asan, asan-full, tsan and debug)" >&2
       exit 2
       ;;
   esac

@@ -15,8 +15,6 @@
 
 namespace wedge::cli {
 
-inline constexpr int kTrappedFpExceptions = FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW;
-
 inline bool fp_traps_requested() {
   static const bool requested = [] {
     const char* value = std::getenv("WEDGE_FP_TRAPS");
@@ -27,9 +25,7 @@ inline bool fp_traps_requested() {
 
 // For the whole program (main).
 inline void enable_fp_traps_if_requested() {
-  if (!fp_traps_requested()) return;
-  std::feclearexcept(FE_ALL_EXCEPT);
-  feenableexcept(kTrappedFpExceptions);
+  if (fp_traps_requested()) trap_fp_exceptions();
 }
 
 // Traps off and flags kept apart while Mesa draws; the environment is restored on exit.
@@ -41,8 +37,7 @@ class TrappedSteps {
   TrappedSteps() : on_(fp_traps_requested()) {
     if (!on_) return;
     std::fegetenv(&saved_);
-    std::feclearexcept(FE_ALL_EXCEPT);  // (flags Mesa left behind are not the steps')
-    feenableexcept(kTrappedFpExceptions);
+    trap_fp_exceptions();  // (flags Mesa left behind are not the steps')
   }
   ~TrappedSteps() {
     if (on_) std::fesetenv(&saved_);

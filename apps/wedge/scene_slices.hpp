@@ -28,7 +28,7 @@ inline std::vector<double> parse_slice_offsets(const std::string& scene, const s
     const std::size_t comma = text.find(',', start);
     const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     double v = 0.0;
-    if (!parse_double(part, v) || !std::isfinite(v))
+    if (!parse_finite(part, v) || !std::isfinite(v))
       throw Failure(scene + ": --w must be a number, or comma-separated numbers for 5D and 6D (got '" + text + "')");
     w.push_back(v);
     if (comma == std::string::npos) break;

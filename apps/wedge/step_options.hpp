@@ -14,7 +14,7 @@
 #include "cli_error.hpp"
 #include "interrupt.hpp"
 #include "scene_json.hpp"
-#include "wedge/fp_env.hpp"
+#include "wedge/parse_number.hpp"
 #include "wedge/world.hpp"
 
 namespace wedge::cli {
@@ -26,16 +26,6 @@ inline bool parse_int64(const std::string& text, std::int64_t& out) {
   char* end = nullptr;
   const long long v = std::strtoll(text.c_str(), &end, 10);
   if (errno != 0 || end != text.c_str() + text.size()) return false;
-  out = v;
-  return true;
-}
-inline bool parse_double(const std::string& text, double& out) {
-  if (text.empty()) return false;
-  const ExpectedFpExceptions quiet;  // "1e999" overflows: refused below
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (errno == ERANGE || end != text.c_str() + text.size()) return false;
   out = v;
   return true;
 }
@@ -78,7 +68,7 @@ inline StepOptions parse_step_options(const std::string& scene, const std::strin
     throw Failure(prefix + "--every must be an integer >= 1 (got '" + every + "')");
   if (!dt.empty()) {
     double h = 0.0;
-    if (!parse_double(dt, h) || !(h >= kMinTimestep && h <= kMaxTimestep))
+    if (!parse_finite(dt, h) || !(h >= kMinTimestep && h <= kMaxTimestep))
       throw Failure(prefix + "--dt must be a step size in [1e-6, 0.1] s (got '" + dt + "')");
     run.dt = h;
   }

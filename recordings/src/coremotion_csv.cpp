@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "csv_table.hpp"
+#include "wedge/parse_number.hpp"
 #include "wedge/error.hpp"
 
 namespace wedge::recordings {

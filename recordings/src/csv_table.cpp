@@ -2,7 +2,6 @@
 
 #include <csv.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -10,7 +9,6 @@
 #include <iterator>
 
 #include "wedge/error.hpp"
-#include "wedge/fp_env.hpp"
 
 namespace wedge::recordings {
 namespace {
@@ -86,14 +84,6 @@ std::vector<CsvRecord> read_csv(const std::string& path) {
   if (csv_fini(&parser.p, Collector::field, Collector::record, &out) != 0)
     fail(out.line - 1, "a quoted field is still open at the end of the file");
   return std::move(out.records);
-}
-
-bool parse_finite(const std::string& text, double& value) {
-  const ExpectedFpExceptions quiet;  // "1e999" overflows: reported as not finite, below
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size() && errno != ERANGE && std::isfinite(value);
 }
 
 std::string printable(const std::string& text) {

@@ -19,10 +19,6 @@ struct CsvRecord {
 // quote left open at the end of the file) or a NUL byte (a binary file is not CSV).
 std::vector<CsvRecord> read_csv(const std::string& path);
 
-// A field read as a finite double (strtod's syntax, the whole field): false for empty text, trailing
-// characters, nan, inf or a value out of double's range.
-bool parse_finite(const std::string& text, double& value);
-
 // A field or header name as an error message may quote it: on one line, control characters and other
 // bytes outside printable ASCII written as \n, \r, \t or \xNN, and cut after 40 characters with "...".
 std::string printable(const std::string& text);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "csv_table.hpp"
+#include "wedge/parse_number.hpp"
 #include "unit_quaternion.hpp"
 #include "wedge/error.hpp"
 #include "wedge/recordings/coremotion_csv.hpp"

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "collision/narrow.hpp"
+#include "collision/shape_extent.hpp"
 #include "instantiate.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/gjk.hpp"
@@ -56,24 +57,6 @@ Transform<N> Sweep<N>::transform(double t) const {
 
 namespace {
 
-// How far from the centre of mass the shape's surface reaches, for the rotational bound: a ball turned
-// about its own centre does not move at all, so only the offset of its centre counts; other shapes
-// their farthest vertex (exact for a face lattice) or the corners of their box in their own frame.
-template <int N>
-double turning_radius(const Shape<N>& shape, const Vec<N>& local_center) {
-  if (!shape.bounded()) return 0.0;
-  if (shape.template is<shapes::Ball<N>>()) return local_center.norm();
-  double r2 = 0.0;
-  if (const ConvexFeatures<N>* f = shape.features()) {
-    for (const Vec<N>& v : f->vertices) r2 = std::max(r2, (v - local_center).squaredNorm());
-  } else {
-    const Aabb<N> box = world_aabb<N>(shape, Vec<N>(Vec<N>::Zero()), Mat<N>(Mat<N>::Identity()));
-    const Vec<N> far = (box.lo - local_center).cwiseAbs().cwiseMax((box.hi - local_center).cwiseAbs());
-    r2 = far.squaredNorm();
-  }
-  return std::sqrt(r2);
-}
-
 // A bounded shape's gap to a half-space: how far its lowest point along the plane's normal lies above
 // the plane (0 when it reaches into it); the normal returned points from the shape towards the plane.
 template <int N>
@@ -107,8 +90,8 @@ template <int N>
 TimeOfImpact<N> time_of_impact(const Shape<N>& a, const Sweep<N>& sweep_a, const Shape<N>& b, const Sweep<N>& sweep_b,
                                const TimeOfImpactSettings& settings) {
   const Vec<N> dc = (sweep_a.c1 - sweep_a.c0) - (sweep_b.c1 - sweep_b.c0);  // a's displacement relative to b
-  const double turning = 2.0 * sweep_a.turn.norm() * turning_radius(a, sweep_a.local_center) +
-                         2.0 * sweep_b.turn.norm() * turning_radius(b, sweep_b.local_center);
+  const double turning = 2.0 * sweep_a.turn.norm() * collision::turning_radius(a, sweep_a.local_center) +
+                         2.0 * sweep_b.turn.norm() * collision::turning_radius(b, sweep_b.local_center);
   const double target = settings.target;
   TimeOfImpact<N> out;
   double t = 0.0;

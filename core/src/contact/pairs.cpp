@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "contact/contact_system.hpp"
+#include "collision/shape_extent.hpp"
 #include "contact/lane_fill.hpp"
 #include "linalg/isotropic.hpp"
 #include "wedge/collision/narrow_phase.hpp"
@@ -21,42 +22,6 @@ namespace {
 template <int N>
 Transform<N> transform_of(const Body<N>& b) {
   return Transform<N>{b.position(), to_matrix(b.rotor)};
-}
-
-// The distance from the centre of mass to the farthest point of the shape (m): exact over the vertices
-// of a shape with a face lattice, else a bound from its box in its own frame; 0 for a half-space.
-template <int N>
-double shape_radius(const Shape<N>& shape, const Vec<N>& local_center) {
-  double r2 = 0.0;
-  if (const ConvexFeatures<N>* f = shape.features()) {
-    for (const Vec<N>& v : f->vertices) r2 = std::max(r2, (v - local_center).squaredNorm());
-  } else if (shape.bounded()) {
-    const Aabb<N> box = world_aabb<N>(shape, Vec<N>(Vec<N>::Zero()), Mat<N>(Mat<N>::Identity()));
-    const Vec<N> far = (box.lo - local_center).cwiseAbs().cwiseMax((box.hi - local_center).cwiseAbs());
-    r2 = far.squaredNorm();
-  }
-  return std::sqrt(r2);
-}
-
-// The distance from the centre of mass to the nearest point of the shape's surface (m), for deciding
-// which bodies move fast for their size: over the facets' planes for a shape with a face lattice; for a
-// ball its radius less the centre's offset; for a round product its thinnest factor less the offset;
-// 0 for a half-space, or a centre outside the shape.
-template <int N>
-double shape_inradius(const Shape<N>& shape, const Vec<N>& local_center) {
-  double r = 0.0;
-  if (const ConvexFeatures<N>* f = shape.features()) {
-    r = std::numeric_limits<double>::infinity();
-    for (const auto& facet : f->facets) r = std::min(r, facet.offset - facet.normal.dot(local_center));
-  } else if (shape.template is<shapes::Ball<N>>()) {
-    r = shape.template as<shapes::Ball<N>>().radius - local_center.norm();
-  } else if (shape.template is<shapes::RoundProduct<N>>()) {
-    r = std::numeric_limits<double>::infinity();
-    for (const ProductFactor& factor : shape.template as<shapes::RoundProduct<N>>().factors)
-      r = std::min(r, factor.size);
-    r -= local_center.norm();
-  }
-  return std::max(r, 0.0);
 }
 
 // Shapes whose contact points stay put on their faces while they touch (see recycling.cpp).
@@ -677,8 +642,8 @@ void add_body(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shap
   s.inradius.push_back(0.0);
   const Shape<N>* shape = shapes[index].get();
   if (!shape) return;
-  s.radius[index] = shape_radius(*shape, bodies[index].local_center);
-  s.inradius[index] = shape_inradius(*shape, bodies[index].local_center);
+  s.radius[index] = collision::shape_radius(*shape, bodies[index].local_center);
+  s.inradius[index] = collision::shape_inradius(*shape, bodies[index].local_center);
   if (!shape->bounded()) {
     s.halfspaces.push_back(std::uint32_t(index));
     return;
