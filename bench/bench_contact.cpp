@@ -32,7 +32,7 @@
 
 #include "contact_scenes.hpp"
 #include "parallel/workers.hpp"
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 
 namespace {
 
@@ -261,7 +261,7 @@ void PaperScene(benchmark::State& state, const char* name) {
     return;
   }
   try {
-    const cli::Scene<4> scene = cli::load_scene_file<4>(path);
+    const scenes::Scene<4> scene = scenes::load_scene_file<4>(path);
     const World<4>& start = settled<4>(path, 0, [&] { return scene.make_world(path); });
     time_wedge<4>(state, start, scene.timestep);
     state.SetItemsProcessed(state.iterations());

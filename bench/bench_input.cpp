@@ -6,7 +6,7 @@
 
 #include <chrono>
 
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 #include "wedge/input/interaction.hpp"
 #include "wedge/recordings/recording_source.hpp"
 #include "wedge/mass.hpp"
@@ -64,7 +64,7 @@ void BM_InputPerStepAndHand(benchmark::State& state) {
 
 void BM_ReplayToyTable(benchmark::State& state) {
   const std::string root = WEDGE_SOURCE_DIR;
-  const cli::Scene<4> scene = cli::load_scene_file<4>(root + "/scenes/toy_table_4d.json");
+  const scenes::Scene<4> scene = scenes::load_scene_file<4>(root + "/scenes/toy_table_4d.json");
   const std::string rec = root + "/recordings/scripted/toy_table_grab.jsonl";
   const recordings::Recording recording = recordings::read_recording(rec);
   double simulated = 0.0;

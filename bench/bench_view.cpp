@@ -5,7 +5,7 @@
 
 #include <chrono>
 
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 #include "wedge/slicing/world_slices.hpp"
 
 using namespace wedge;
@@ -15,7 +15,7 @@ namespace {
 template <int N>
 void frame(benchmark::State& state, const char* name) {
   const std::string file = std::string(WEDGE_SOURCE_DIR) + "/scenes/" + name;
-  const cli::Scene<N> scene = cli::load_scene_file<N>(file);
+  const scenes::Scene<N> scene = scenes::load_scene_file<N>(file);
   World<N> world = scene.make_world(file);
   slicing::WorldSlices<N> slices(world, {}, int(state.range(0)));  // subdivisions: 8 is the viewer default in 4D  // the viewer's default tessellation
   std::vector<slicing::DisplayMesh<3>> meshes;

@@ -99,7 +99,7 @@ void BM_XrFrame(benchmark::State& state, const char* scene_name, const char* rec
   ::setenv("LP_NUM_THREADS", "1", 0);
   const std::string root = WEDGE_SOURCE_DIR;
   const std::string file = root + "/scenes/" + scene_name;
-  const cli::Scene<4> scene = cli::load_scene_file<4>(file);
+  const scenes::Scene<4> scene = scenes::load_scene_file<4>(file);
   const std::string rec_file = *recording_name ? root + "/recordings/scripted/" + recording_name : "";
   std::optional<recordings::Recording> recording;
   if (!rec_file.empty()) recording = recordings::read_recording(rec_file);

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "builders.hpp"
+#include "wedge/scenes/builders.hpp"
 #include "wedge/ga/products.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/world.hpp"

@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "contact_bodies.hpp"
-#include "builders.hpp"
+#include "wedge/scenes/builders.hpp"
 #include "contact/contact_system.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/mass.hpp"

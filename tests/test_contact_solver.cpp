@@ -6,7 +6,7 @@
 #include <memory>
 #include <random>
 
-#include "builders.hpp"
+#include "wedge/scenes/builders.hpp"
 #include "drift.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/mass.hpp"

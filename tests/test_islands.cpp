@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <memory>
 
-#include "builders.hpp"
+#include "wedge/scenes/builders.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/world.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "drift.hpp"
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 #include "slice_checks.hpp"
 #include "wedge/ga/products.hpp"
 #include "wedge/slicing/display_mesh.hpp"
@@ -19,7 +19,7 @@ namespace {
 
 template <int N>
 World<N> load(const std::string& name, double& h) {
-  const cli::Scene<N> scene = cli::load_scene_file<N>(std::string(WEDGE_SOURCE_DIR) + "/scenes/" + name);
+  const scenes::Scene<N> scene = scenes::load_scene_file<N>(std::string(WEDGE_SOURCE_DIR) + "/scenes/" + name);
   h = scene.timestep;
   return scene.make_world(name);
 }
@@ -117,7 +117,7 @@ TEST_CASE("default (the main job): three bodies thrown up land, come to rest on 
           "slice",
           "[scenes][contact][4d]") {
   double h = 0.0;
-  const cli::Scene<4> scene = cli::load_scene_file<4>(std::string(WEDGE_SOURCE_DIR) + "/scenes/default.json");
+  const scenes::Scene<4> scene = scenes::load_scene_file<4>(std::string(WEDGE_SOURCE_DIR) + "/scenes/default.json");
   World<4> w = load<4>("default.json", h);
   REQUIRE(w.body_count() == 4);  // the ground and three bodies
   std::array<double, 4> top{};

@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 #include "wedge/input/interaction.hpp"
 #include "wedge/world.hpp"
 
@@ -72,7 +72,7 @@ double deepest_overlap(const World<N>& world) {
 
 TEST_CASE("soak: five minutes of random grabs, turns, 4D turns, throws and tilts on the 4D toy table", "[soak][slow]") {
   const std::string file = std::string(WEDGE_SOURCE_DIR) + "/scenes/toy_table_4d.json";
-  const cli::Scene<N> scene = cli::load_scene_file<N>(file);  // (wedge::cli: the scene loader)
+  const scenes::Scene<N> scene = scenes::load_scene_file<N>(file);
   World<N> world = scene.make_world(file);
   input::InteractionSettings<N> settings;
   settings.tracking.origin = scene.interaction.origin;

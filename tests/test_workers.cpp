@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "builders.hpp"
+#include "wedge/scenes/builders.hpp"
 #include "parallel/workers.hpp"
 #include "wedge/error.hpp"
 #include "wedge/mass.hpp"

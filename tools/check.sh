@@ -5,13 +5,16 @@
 #              test of the program (the [cli] tests: each shipped scene's and recording's state hash, the
 #              importers, replays, `wedge xr` over the runtime) run against that build, and a short run
 #              of each fuzz target from its seeds. Needs `release` first (its tests drive the program).
+#   install    The libraries installed into a scratch prefix (build-install/prefix), and examples/ built
+#              against that package with find_package(Wedge) and run: a hand's grab and the pulse it
+#              feels; a shipped recording replayed to its recorded state hash. Needs `release` first.
 #   asan-full  The whole suite built and run under ASan + UBSan (about an hour on 2 cores).
 #   tsan       The multi-threaded step's tests (--workers) under ThreadSanitizer.
 #   debug      The program built Debug (gcc -O0): every shipped scene's and recording's state hash, in
 #              each lane width, must come out as the Release build's (determinism across builds). Needs
 #              `release` first.
 # CI runs `release asan` (the README's test command). Any sanitizer report fails.
-#   tools/check.sh [release|asan|asan-full|tsan|debug]...
+#   tools/check.sh [release|install|asan|asan-full|tsan|debug]...
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${JOBS:-2}
@@ -38,6 +41,14 @@ for stage in "${stages[@]}"; do
       cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
       cmake --build build -j"$jobs"
       ctest --test-dir build --output-on-failure -j"$jobs"
+      ;;
+    install)
+      rm -rf build-install
+      cmake --install build --prefix build-install/prefix
+      cmake -S examples -B build-install/examples -G Ninja -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_PREFIX_PATH="$PWD/build-install/prefix"
+      cmake --build build-install/examples -j"$jobs"
+      tools/check_examples.sh build-install/examples
       ;;
     asan)
       sanitized build-asan address,undefined -DWEDGE_BUILD_FUZZERS=ON
@@ -71,7 +82,7 @@ for stage in "${stages[@]}"; do
       WEDGE_PROGRAM=$PWD/build-debug/apps/wedge/wedge ctest --test-dir build --output-on-failure -j"$jobs" -R 'state hashes'
       ;;
     *)
-      echo "tools/check.sh: unknown stage '$stage' (the stages are release, asan, asan-full, tsan and debug)" >&2
+      echo "tools/check.sh: unknown stage '$stage' (the stages are release, install, asan, asan-full, tsan and debug)" >&2
       exit 2
       ;;
   esac

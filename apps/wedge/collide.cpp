@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "json_out.hpp"
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "verbs.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/broadphase.hpp"

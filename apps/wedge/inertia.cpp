@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "json_out.hpp"
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "verbs.hpp"
 #include "wedge/error.hpp"
 

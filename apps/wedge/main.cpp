@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_error.hpp"
+#include "wedge/scenes/error.hpp"
 #include "fp_traps.hpp"
 #include "interrupt.hpp"
 #include "verbs.hpp"
@@ -103,6 +104,9 @@ int main(int argc, char** argv) {
     std::cerr << "wedge: " << e.what() << "\n";
     return 128 + e.signal();
   } catch (const Failure& e) {
+    std::cerr << "wedge: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const wedge::scenes::SceneError& e) {
     std::cerr << "wedge: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const wedge::Error& e) {  // should have been caught with a file name; still bad input

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "scene_json.hpp"
+#include "scenes.hpp"
+#include "wedge/scenes/interaction.hpp"
 #include "step_options.hpp"
 #include "wedge/input/interaction.hpp"
 #include "wedge/input/session.hpp"
@@ -15,17 +16,6 @@
 #include "wedge/recordings/recording.hpp"
 
 namespace wedge::cli {
-
-template <int N>
-input::InteractionSettings<N> interaction_settings(const Scene<N>& scene) {
-  input::InteractionSettings<N> s;
-  s.tracking.origin = scene.interaction.origin;
-  s.tracking.scale = scene.interaction.scale;
-  s.grab_radius = scene.interaction.grab_radius;
-  s.gravity_tilt_on = scene.interaction.gravity_tilt_on;
-  s.gravity_tilt_degrees = scene.interaction.gravity_tilt;
-  return s;
-}
 
 inline recordings::RecordingSource load_recordings(const std::vector<std::string>& files) {
   std::vector<recordings::Recording> recs;
@@ -57,15 +47,6 @@ void check_fit(const Scene<N>& scene, const recordings::RecordingSource& src, co
                   scene_file + " has no gravity (set \"gravity\" in the scene)");
   if (!src.has_hands() && !src.has_motion())
     throw Failure(files.front() + ": holds no hand or accelerometer samples (nothing to replay)");
-}
-
-// The session settings of a scene: its interaction block and its step (or --dt's).
-template <int N>
-input::SessionSettings<N> session_settings(const Scene<N>& scene, double h) {
-  input::SessionSettings<N> s;
-  s.interaction = interaction_settings(scene);
-  s.timestep = h;
-  return s;
 }
 
 // An input session over one world whose steps are checked as every verb's are (checked_step: Ctrl-C,

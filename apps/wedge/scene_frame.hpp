@@ -12,7 +12,7 @@
 #include <cmath>
 #include <vector>
 
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "wedge/render/renderer.hpp"
 #include "wedge/slicing/world_slices.hpp"
 

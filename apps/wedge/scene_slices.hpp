@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "step_options.hpp"
 #include "wedge/ga/products.hpp"
 #include "wedge/slicing/world_slices.hpp"

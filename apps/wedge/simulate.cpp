@@ -12,7 +12,7 @@
 #include "interrupt.hpp"
 #include "json_out.hpp"
 #include "state_json.hpp"
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "step_options.hpp"
 #include "verbs.hpp"
 

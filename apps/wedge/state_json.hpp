@@ -5,7 +5,7 @@
 #include <string>
 
 #include "json_out.hpp"
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "step_options.hpp"
 
 namespace wedge::cli {

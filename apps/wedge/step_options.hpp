@@ -13,7 +13,7 @@
 
 #include "cli_error.hpp"
 #include "interrupt.hpp"
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "wedge/parse_number.hpp"
 #include "wedge/world.hpp"
 

@@ -8,7 +8,7 @@
 #include <exception>
 #include <fstream>
 
-#include "json_in.hpp"
+#include "scenes.hpp"
 #include "wedge/fp_env.hpp"
 
 namespace wedge::cli::viewer {

@@ -24,7 +24,7 @@
 #include "fp_traps.hpp"
 #include "interrupt.hpp"
 #include "replay_input.hpp"
-#include "scene_json.hpp"
+#include "scenes.hpp"
 #include "session_output.hpp"
 #include "step_options.hpp"
 #include "verbs.hpp"

@@ -1,6 +1,6 @@
 // Scene loading: JSON -> Scene<N> -> World<N>; explicitly instantiated for N = 2..6.
 // Shapes are read in shape_json.cpp. The schema is in docs/scene-format.md.
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
 
-namespace wedge::cli {
+namespace wedge::scenes {
 
 namespace {
 
@@ -311,4 +311,4 @@ WEDGE_CLI_INSTANTIATE(5)
 WEDGE_CLI_INSTANTIATE(6)
 #undef WEDGE_CLI_INSTANTIATE
 
-}  // namespace wedge::cli
+}  // namespace wedge::scenes

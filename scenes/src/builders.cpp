@@ -1,5 +1,5 @@
 // Scenes made in code (builders.hpp); explicitly instantiated for N = 2..6.
-#include "builders.hpp"
+#include "wedge/scenes/builders.hpp"
 
 #include <cmath>
 #include <memory>

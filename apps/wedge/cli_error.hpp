@@ -23,22 +23,11 @@ class InternalError : public std::runtime_error {
   explicit InternalError(const std::string& what) : std::runtime_error(what) {}
 };
 
-// A complete, user-facing message (already prefixed with the file name where there is one).
+// A complete, user-facing message (already prefixed with the file name where there is one). The scene
+// library's wedge::scenes::SceneError is one too; main() reports both the same way.
 class Failure : public std::runtime_error {
  public:
   explicit Failure(const std::string& what) : std::runtime_error(what) {}
-};
-
-// A problem at a place in a JSON document, e.g. path "bodies[2].shape.half_extents" and what
-// "expected 4 numbers, got 3". The loader catches it and prefixes the file name.
-class JsonError : public std::runtime_error {
- public:
-  JsonError(std::string path, const std::string& what)
-      : std::runtime_error(path.empty() ? what : path + ": " + what), path_(std::move(path)) {}
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
 };
 
 }  // namespace wedge::cli

@@ -1,7 +1,7 @@
 // Scene files (JSON) -> World<N>, keeping each body's shape, density and display colour for the tools.
 // The schema is in docs/scene-format.md. Everything is checked while loading: unknown keys, types,
 // sizes, ranges, finiteness, rotors, meshes (via the core's wedge::Error). Every problem comes out as a
-// Failure whose message starts with the file name and the JSON path: "scene.json: bodies[2].shape.
+// SceneError whose message starts with the file name and the JSON path: "scene.json: bodies[2].shape.
 // half_extents: expected 4 numbers, got 3".
 #pragma once
 
@@ -12,15 +12,15 @@
 #include <utility>
 #include <vector>
 
-#include "cli_error.hpp"
-#include "json_in.hpp"
+#include "wedge/scenes/error.hpp"
+#include "wedge/scenes/json.hpp"
 #include "wedge/body.hpp"
 #include "wedge/error.hpp"
 #include "wedge/mass.hpp"
 #include "wedge/shape.hpp"
 #include "wedge/world.hpp"
 
-namespace wedge::cli {
+namespace wedge::scenes {
 
 inline constexpr int kMinDim = 2, kMaxDim = 6;
 inline constexpr double kDefaultTimestep = 1.0 / 120.0;
@@ -64,11 +64,11 @@ struct Scene {
   SceneView view;
   SceneInteraction<N> interaction;
 
-  // A world holding every body, in file order (throws Failure naming the file and body on error).
+  // A world holding every body, in file order (throws SceneError naming the file and body on error).
   World<N> make_world(const std::string& file) const;
 };
 
-// The "dim" of a document, checked to be an integer in 2..6; throws Failure.
+// The "dim" of a document, checked to be an integer in 2..6; throws SceneError.
 int read_dim(const Json& doc, const std::string& file);
 
 // A shape object ({"type": ..}) at `node`; throws JsonError (or wedge::Error from the core, which the
@@ -76,16 +76,16 @@ int read_dim(const Json& doc, const std::string& file);
 template <int N>
 Shape<N> read_shape(const Node& node);
 
-// Runs `what` and turns JsonError and wedge::Error into a Failure prefixed with the file name (and,
+// Runs `what` and turns JsonError and wedge::Error into a SceneError prefixed with the file name (and,
 // for wedge::Error, `path`).
 template <class F>
 decltype(auto) with_file_context(const std::string& file, const std::string& path, F&& what) {
   try {
     return std::forward<F>(what)();
   } catch (const JsonError& e) {
-    throw Failure(file + ": " + e.what());
+    throw SceneError(file + ": " + e.what());
   } catch (const Error& e) {
-    throw Failure(file + ": " + (path.empty() ? std::string() : path + ": ") + e.what());
+    throw SceneError(file + ": " + (path.empty() ? std::string() : path + ": ") + e.what());
   }
 }
 
@@ -104,13 +104,13 @@ decltype(auto) with_dim(int n, F&& f) {
   }
 }
 
-// Reads and loads a scene file whose "dim" must be N (tests, benchmarks); throws Failure naming the file.
+// Reads and loads a scene file whose "dim" must be N (tests, benchmarks); throws SceneError naming the file.
 template <int N>
 Scene<N> load_scene_file(const std::string& file) {
   const Json doc = read_json_file(file);
   const int n = read_dim(doc, file);
-  if (n != N) throw Failure(file + ": dim: expected " + std::to_string(N) + ", got " + std::to_string(n));
+  if (n != N) throw SceneError(file + ": dim: expected " + std::to_string(N) + ", got " + std::to_string(n));
   return load_scene<N>(doc, file);
 }
 
-}  // namespace wedge::cli
+}  // namespace wedge::scenes

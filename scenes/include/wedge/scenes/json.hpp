@@ -12,14 +12,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_error.hpp"
+#include "wedge/scenes/error.hpp"
 #include "wedge/ga/types.hpp"
 
-namespace wedge::cli {
+namespace wedge::scenes {
 
 using Json = nlohmann::json;
 
-// Reads and parses a whole JSON file; throws Failure("FILE: ...") if it cannot be read or parsed.
+// Reads and parses a whole JSON file; throws SceneError("FILE: ...") if it cannot be read or parsed.
 Json read_json_file(const std::string& file);
 
 class Node {
@@ -91,4 +91,4 @@ std::string format_number(double v);
 std::string child_path(const std::string& parent, const std::string& key);
 std::string index_path(const std::string& parent, std::size_t index);
 
-}  // namespace wedge::cli
+}  // namespace wedge::scenes

@@ -11,11 +11,11 @@
 // ranges of the JSON itself are checked here, with paths.
 #include <limits>
 
-#include "scene_json.hpp"
+#include "wedge/scenes/scene.hpp"
 #include "wedge/error.hpp"
 #include "wedge/regular_polytopes.hpp"
 
-namespace wedge::cli {
+namespace wedge::scenes {
 
 namespace {
 
@@ -153,4 +153,4 @@ template Shape<4> read_shape<4>(const Node&);
 template Shape<5> read_shape<5>(const Node&);
 template Shape<6> read_shape<6>(const Node&);
 
-}  // namespace wedge::cli
+}  // namespace wedge::scenes

@@ -1,5 +1,5 @@
-// Strict JSON reading with paths; see json_in.hpp.
-#include "json_in.hpp"
+// Strict JSON reading with paths; see wedge/scenes/json.hpp.
+#include "wedge/scenes/json.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -14,7 +14,7 @@
 
 #include "wedge/fp_env.hpp"
 
-namespace wedge::cli {
+namespace wedge::scenes {
 
 namespace {
 
@@ -102,21 +102,21 @@ class DuplicateKeyCheck {
 
 Json read_json_file(const std::string& file) {
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw Failure(file + ": is a folder, not a JSON file");
+  if (std::filesystem::is_directory(file, ec)) throw SceneError(file + ": is a folder, not a JSON file");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw Failure(file + ": cannot open file (" + std::strerror(errno) + ")");
+  if (!in) throw SceneError(file + ": cannot open file (" + std::strerror(errno) + ")");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw Failure(file + ": cannot read file");
+  if (in.bad()) throw SceneError(file + ": cannot read file");
   try {
     const ExpectedFpExceptions quiet;  // 1e400 overflows while parsed: reported below
     return Json::parse(text.str(), DuplicateKeyCheck{});
   } catch (const JsonError& e) {
-    throw Failure(file + ": " + (e.path().empty() ? std::string("top level: ") : std::string()) + e.what());
+    throw SceneError(file + ": " + (e.path().empty() ? std::string("top level: ") : std::string()) + e.what());
   } catch (const Json::parse_error& e) {
-    throw Failure(file + ": malformed JSON: " + strip_exception_tag(e.what()));
+    throw SceneError(file + ": malformed JSON: " + strip_exception_tag(e.what()));
   } catch (const Json::exception& e) {  // e.g. number overflow: "1e400"
-    throw Failure(file + ": malformed JSON: " + strip_exception_tag(e.what()));
+    throw SceneError(file + ": malformed JSON: " + strip_exception_tag(e.what()));
   }
 }
 
@@ -235,4 +235,4 @@ void ObjectReader::finish() const {
   }
 }
 
-}  // namespace wedge::cli
+}  // namespace wedge::scenes
