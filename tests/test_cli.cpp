@@ -460,6 +460,37 @@ TEST_CASE("wedge: unknown verbs are named, help and --version answer", "[cli]") 
   CHECK(version.out.find("wedge 0.") == 0);
 }
 
+TEST_CASE("wedge view and wedge xr run the programs beside wedge, and name the one that is missing", "[cli]") {
+  TempDir dir;
+  // Through `wedge`: the verb's own program answers, with the verb's options.
+  const Result view_help = dir.run("view --help");
+  CHECK(view_help.code == 0);
+  CHECK(view_help.out.find("Usage: wedge view") != std::string::npos);
+  CHECK(view_help.out.find("--screenshot") != std::string::npos);
+  const Result help_view = dir.run("help view");
+  CHECK(help_view.code == 0);
+  CHECK(help_view.out.find("--screenshot") != std::string::npos);
+  // Its errors are the program's: one line naming the file, exit 2.
+  const Result missing_scene = dir.run("view missing.json");
+  CHECK(missing_scene.code == 2);
+  CHECK(missing_scene.err == "wedge: missing.json: cannot open file (No such file or directory)\n");
+  // A copy of `wedge` alone in a folder has no wedge-view beside it: it says which program to build.
+  const fs::path lone = dir.path() / "lone";
+  fs::create_directory(lone);
+  fs::copy_file(cli_runner::kWedge, lone / "wedge");
+  for (const std::string verb : {"view", "xr"}) {
+    const Result r = dir.shell("lone/wedge " + verb + " scene.json");
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    const bool names_program = r.err.find("is the program wedge-" + verb + ", which is not built beside this one") !=
+                                   std::string::npos &&
+                               r.err.find("--target wedge-" + verb) != std::string::npos;
+    const bool not_in_build = r.err.find("this build has no '" + verb + "' verb") != std::string::npos;
+    CHECK((names_program || not_in_build));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+}
+
 TEST_CASE("wedge: a directory given as a scene is named as one", "[cli]") {
   TempDir dir;
   fs::create_directory(dir.path() / "scenes.json");

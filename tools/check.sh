@@ -52,7 +52,7 @@ for stage in "${stages[@]}"; do
       ;;
     asan)
       sanitized build-asan address,undefined -DWEDGE_BUILD_FUZZERS=ON
-      cmake --build build-asan -j"$jobs" --target wedge wedge_xr_replay fuzz_scene fuzz_inertia fuzz_recording \
+      cmake --build build-asan -j"$jobs" --target wedge-programs wedge_xr_replay fuzz_scene fuzz_inertia fuzz_recording \
         fuzz_questset_csv fuzz_coremotion_csv fuzz_mouse_script
       # (WEDGE_FP_TRAPS=0: clang vectorises scalar divisions into packed ones whose unused lane divides
       # 0 by 0, which a trap cannot tell from a real invalid operation; tests/main.cpp.)

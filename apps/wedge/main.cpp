@@ -1,21 +1,66 @@
-// wedge: the command-line front end of the engine. Dispatches to one verb per file (inertia.cpp,
-// simulate.cpp, collide.cpp, render.cpp, slice.cpp, import.cpp, replay.cpp, view.cpp); exit codes in cli_error.hpp.
+// wedge: the command-line front end of the engine, one file per verb (inertia.cpp, simulate.cpp,
+// collide.cpp, render.cpp, slice.cpp, import.cpp, replay.cpp). `wedge view` and `wedge xr` run the
+// programs wedge-view and wedge-xr beside this one (program.hpp); exit codes in cli_error.hpp.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <exception>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "cli_error.hpp"
-#include "wedge/scenes/error.hpp"
 #include "fp_traps.hpp"
-#include "interrupt.hpp"
+#include "program.hpp"
+#include "program_config.hpp"
 #include "verbs.hpp"
-#include "wedge/error.hpp"
+
+namespace {
+
+using namespace wedge::cli;
+
+// Why this build has no program for the verb, if it has none by design (the build's options).
+const char* missing_by_design(const std::string& verb) {
+#ifndef WEDGE_HAVE_VIEW
+  if (verb == "view") return "it was built without the viewer (WEDGE_BUILD_VIEWER=OFF)";
+#endif
+#ifndef WEDGE_HAVE_XR
+  if (verb == "xr") return "it was built without the OpenXR SDK (Debian: libopenxr-dev) or with WEDGE_BUILD_XR=OFF";
+#endif
+  return nullptr;
+}
+
+// Replaces this process with wedge-VERB from this program's folder, given the same arguments. Returns
+// only if that cannot be done, with the exit code after saying why.
+int run_verb_program(const std::string& verb, int argc, char** argv) {
+  if (const char* why = missing_by_design(verb)) {
+    std::cerr << "wedge: this build has no '" << verb << "' verb: " << why << "\n";
+    return kExitBadInput;
+  }
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path program = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / ("wedge-" + verb);
+  std::vector<char*> args(argv, argv + argc);
+  const std::string name = program.string();
+  args[0] = const_cast<char*>(name.c_str());
+  args.push_back(nullptr);
+  ::execv(name.c_str(), args.data());
+  const int err = errno;
+  if (err == ENOENT) {
+    std::cerr << "wedge: '" << verb << "' is the program wedge-" << verb << ", which is not built beside this one ("
+              << name << "): build it with cmake --build BUILD --target wedge-" << verb << "\n";
+    return kExitBadInput;
+  }
+  std::cerr << "wedge: cannot run " << name << ": " << std::strerror(err) << "\n";
+  return kExitInternal;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  using namespace wedge::cli;
   enable_fp_traps_if_requested();  // WEDGE_FP_TRAPS=1 (fp_traps.hpp)
   CLI::App app{"wedge: n-dimensional rigid-body dynamics (n = 2..6) with geometric algebra.\n"
                "Input and output formats: docs/scene-format.md.",
@@ -32,7 +77,6 @@ int main(int argc, char** argv) {
   SliceOptions slice;
   ImportOptions import_options;
   ReplayOptions replay;
-  ViewOptions view;
   CLI::App* inertia_cmd = add_inertia_verb(app, inertia);
   CLI::App* simulate_cmd = add_simulate_verb(app, simulate);
   CLI::App* collide_cmd = add_collide_verb(app, collide);
@@ -40,11 +84,9 @@ int main(int argc, char** argv) {
   CLI::App* slice_cmd = add_slice_verb(app, slice);
   CLI::App* import_cmd = add_import_verb(app, import_options);
   CLI::App* replay_cmd = add_replay_verb(app, replay);
-  CLI::App* view_cmd = add_view_verb(app, view);
-#ifdef WEDGE_HAVE_XR
-  XrOptions xr;
-  CLI::App* xr_cmd = add_xr_verb(app, xr);
-#endif
+  // Listed in the help; run by their own programs.
+  app.add_subcommand("view", kViewSummary)->allow_extras();
+  app.add_subcommand("xr", kXrSummary)->allow_extras();
 
   // The verb comes first. Name an unknown one (CLI11 would only say that a subcommand is required), and
   // take `wedge help [VERB]` as the --help it means.
@@ -58,12 +100,11 @@ int main(int argc, char** argv) {
     }
     args = {args[1], "--help"};
   }
-#ifndef WEDGE_HAVE_XR
-  if (!args.empty() && args[0] == "xr") {
-    std::cerr << "wedge: this build has no 'xr' verb: it was built without the OpenXR SDK (Debian: libopenxr-dev)\n";
-    return kExitBadInput;
+  if (!args.empty() && (args[0] == "view" || args[0] == "xr")) {
+    std::vector<char*> pass = {argv[0]};
+    for (std::string& a : args) pass.push_back(a.data());
+    return run_verb_program(args[0], int(pass.size()), pass.data());
   }
-#endif
   if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
       std::find(verbs.begin(), verbs.end(), args[0]) == verbs.end()) {
     std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render, "
@@ -71,22 +112,8 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
-  try {
-    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments as a stack, last first
-    app.parse(args);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);  // prints the help of the (sub)command asked for, exit code 0
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "wedge: " << e.what() << "\nRun 'wedge --help' for usage.\n";
-    return kExitBadInput;
-  }
-
-  install_interrupt_handlers();
-  try {
+  if (const std::optional<int> code = parse_verb_line(app, args)) return *code;
+  return run_verb([&] {
     if (inertia_cmd->parsed()) return run_inertia(inertia);
     if (simulate_cmd->parsed()) return run_simulate(simulate);
     if (collide_cmd->parsed()) return run_collide(collide);
@@ -94,27 +121,7 @@ int main(int argc, char** argv) {
     if (slice_cmd->parsed()) return run_slice(slice);
     if (import_cmd->parsed()) return run_import(import_options);
     if (replay_cmd->parsed()) return run_replay(replay);
-    if (view_cmd->parsed()) return run_view(view);
-#ifdef WEDGE_HAVE_XR
-    if (xr_cmd->parsed()) return run_xr(xr);
-#endif
     std::cerr << "wedge: no verb given\n";
     return kExitBadInput;
-  } catch (const Interrupted& e) {
-    std::cerr << "wedge: " << e.what() << "\n";
-    return 128 + e.signal();
-  } catch (const Failure& e) {
-    std::cerr << "wedge: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const wedge::scenes::SceneError& e) {
-    std::cerr << "wedge: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const wedge::Error& e) {  // should have been caught with a file name; still bad input
-    std::cerr << "wedge: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::exception& e) {  // InternalError, std::bad_alloc, ...
-    std::cerr << "wedge: internal error: " << e.what()
-              << "\nThis is a bug in wedge: please report it with the command line and the input files.\n";
-    return kExitInternal;
-  }
+  });
 }

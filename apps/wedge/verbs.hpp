@@ -83,6 +83,8 @@ int run_replay(const ReplayOptions& options);
 // wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--play-subdivisions S]
 //            [--replay RECORDING... | --record FILE] [--mouse FILE] [--events FILE] [--contacts] [--hash]
 //            [--frames N --screenshot FILE.png]
+inline constexpr const char* kViewSummary =
+    "Open a window on the scene's 3D slice: play, pause, step, move the slice along w, orbit the camera.";
 struct ViewOptions {
   std::string scene;
   std::string w, size, subdivisions, play_subdivisions, frames, screenshot, mouse, record, events;
@@ -94,6 +96,9 @@ int run_view(const ViewOptions& options);
 
 // wedge xr SCENE.json [--headless] [--record FILE] [--out FILE] [--every K] [--events FILE] [--hash]
 //                     [--w W] [--subdivisions S] [--until T]  (built with the OpenXR SDK: WEDGE_HAVE_XR)
+inline constexpr const char* kXrSummary =
+    "Put the scene in a headset through OpenXR (the active runtime, or XR_RUNTIME_JSON): grab, turn and throw "
+    "with the controllers, feel the hits. --headless runs input, physics and haptics without frames.";
 struct XrOptions {
   std::string scene;
   std::string record, out, events, every, until, w, subdivisions;

@@ -302,8 +302,7 @@ int view(const Json& doc, const ViewOptions& o, const std::vector<double>& w0, i
 }  // namespace
 
 CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
-  CLI::App* cmd = app.add_subcommand(
-      "view", "Open a window on the scene's 3D slice: play, pause, step, move the slice along w, orbit the camera.");
+  CLI::App* cmd = app.add_subcommand("view", kViewSummary);
   cmd->add_option("scene", o.scene, "Scene file (JSON, docs/scene-format.md)")->required()->type_name("SCENE.json");
   cmd->add_option("--w", o.w, "Slice offsets: W in 4D, W1,W2 in 5D, three in 6D (default 0)")->type_name("W");
   cmd->add_option("--size", o.size, "Window size in pixels (default 1280x720)")->type_name("WxH");

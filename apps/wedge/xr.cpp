@@ -295,10 +295,7 @@ int run_xr_scene(const Json& doc, const XrOptions& o, const XrRun& run) {
 }  // namespace
 
 CLI::App* add_xr_verb(CLI::App& app, XrOptions& o) {
-  CLI::App* cmd = app.add_subcommand(
-      "xr",
-      "Put the scene in a headset through OpenXR (the active runtime, or XR_RUNTIME_JSON): grab, turn and throw "
-      "with the controllers, feel the hits. --headless runs input, physics and haptics without frames.");
+  CLI::App* cmd = app.add_subcommand("xr", kXrSummary);
   cmd->add_option("scene", o.scene, "Scene file (JSON, docs/scene-format.md)")->required()->type_name("SCENE.json");
   cmd->add_flag("--headless", o.headless, "No frames: input, physics and haptics only (needs XR_MND_headless)");
   cmd->add_option("--record", o.record,
