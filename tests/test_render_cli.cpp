@@ -175,7 +175,7 @@ TEST_CASE("wedge render names the bodies that never meet the drawn slice", "[cli
   CHECK(missed.err == "wedge: warning: t.json: 't' never meets the drawn slice in any frame (move the slice with --w)\n");
 }
 
-TEST_CASE("wedge render --replay draws the scene as recordings drive it", "[cli][render][replay]") {
+TEST_CASE("wedge render --replay draws the scene as recordings drive it, the hand marked", "[cli][render][replay]") {
   TempDir dir;
   // A red tesseract floating at the origin (no gravity); a right hand grabs it at its centre and carries
   // it 1 m along +x in 1 s. Without the recording it stays put.
@@ -212,6 +212,17 @@ TEST_CASE("wedge render --replay draws the scene as recordings drive it", "[cli]
   INFO("moved " << moved << " px, stayed " << stayed << " px");
   CHECK(moved > 20.0);  // carried right across the picture
   CHECK(std::abs(stayed) < 1.0);
+  // The hand is marked over the body it holds (green, view_overlays.hpp), and only in the replay.
+  auto green_pixels = [](const Image& img) {
+    int count = 0;
+    for (std::size_t i = 0; i < img.rgba.size(); i += 4)
+      count += img.rgba[i + 1] > img.rgba[i] + 50 && img.rgba[i + 1] > img.rgba[i + 2] + 50;
+    return count;
+  };
+  const int held_mark = green_pixels(read_png(dir.path() / "frames" / "frame_00001.png"));
+  INFO("green pixels: " << held_mark);
+  CHECK(held_mark >= 4);
+  CHECK(green_pixels(read_png(dir.path() / "still" / "frame_00001.png")) == 0);
 
   // A recording that does not fit the scene is refused before anything is drawn.
   dir.write("t3.json", R"({"dim": 3, "bodies": [{"name": "t", "shape": {"type": "box", "half_extents": [0.3, 0.3, 0.3]}}]})");

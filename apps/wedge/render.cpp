@@ -30,6 +30,7 @@
 #include "scene_frame.hpp"
 #include "scene_slices.hpp"
 #include "verbs.hpp"
+#include "view_overlays.hpp"
 #include "wedge/render/offscreen_context.hpp"
 #include "wedge/render/png.hpp"
 #include "wedge/render/renderer.hpp"
@@ -67,6 +68,30 @@ struct Pose {
   Rotor<N> rotor;
 };
 
+// A mark drawn over a frame of a replay (view_overlays.hpp): a hand, or where a held body hit.
+struct Mark {
+  Eigen::Vector3d at;  // m, slice coordinates
+  double half = 0.0;   // m: the cube's half size
+  render::Color color;
+};
+
+// The marks of a replay's frame: each tracked hand (green while it holds a body, yellow if a haptic pulse
+// went to it since the last frame drawn), and the points where those pulses' bodies met.
+template <int N>
+std::vector<Mark> replay_marks(const input::Interaction<N>& hands, const slicing::WorldSlices<N>& slices,
+                               const std::vector<input::HapticPulse<N>>& pulses) {
+  std::vector<Mark> marks;
+  for (int k = 0; k < input::kHandCount; ++k) {
+    if (!hands.tracked(k)) continue;
+    const bool flash = std::any_of(pulses.begin(), pulses.end(), [k](const auto& p) { return p.hand == k; });
+    const bool holding = hands.held(k).has_value();
+    marks.push_back({slices.to_slice_point(hands.hand_point(k)), flash || holding ? 0.05 : 0.04,
+                     hand_color(k, holding, flash)});
+  }
+  for (const input::HapticPulse<N>& p : pulses) marks.push_back({slices.to_slice_point(p.point), 0.05, kFlashColor});
+  return marks;
+}
+
 // The sheet's tiles: at most this many frames, this many to a row, at most this wide (px).
 constexpr int kSheetTiles = 12, kSheetColumns = 4, kSheetTileWidth = 400;
 
@@ -96,6 +121,8 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     // Simulate first: the states of the frames to draw, and the corners of the box around every body's
     // slice in every one of them: what the camera must show.
     std::vector<std::vector<Pose<N>>> frames;
+    std::vector<std::vector<Mark>> frame_marks;      // --replay: the hands, per frame
+    std::vector<input::HapticPulse<N>> recent_pulses;  // --replay: since the last frame recorded
     std::vector<Eigen::Vector3d> points;
     std::vector<slicing::DisplayMesh<3>> meshes;
     std::vector<bool> seen;  // per sliced body: met the slice in some drawn frame
@@ -106,6 +133,8 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
         poses.push_back({b.center, b.rotor});
       }
       frames.push_back(std::move(poses));
+      frame_marks.push_back(replay ? replay_marks(replay->interaction(), slices, recent_pulses) : std::vector<Mark>{});
+      recent_pulses.clear();
       slices.slice(world, meshes);
       seen.resize(meshes.size(), false);
       for (std::size_t k = 0; k < meshes.size(); ++k) seen[k] = seen[k] || !meshes[k].empty();
@@ -116,7 +145,9 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
     for (std::int64_t s = 1; s <= run.steps; ++s) {
       if (replay) {
         replay->step();
-        replay->session().clear_output();  // (the pictures show no events)
+        const auto& pulses = replay->session().pulses();
+        recent_pulses.insert(recent_pulses.end(), pulses.begin(), pulses.end());
+        replay->session().clear_output();
       } else {
         checked_step(world, h, file);  // checks for Ctrl-C first
       }
@@ -186,6 +217,9 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
           if (sb.color) color = {float((*sb.color)[0]), float((*sb.color)[1]), float((*sb.color)[2])};
           frame.meshes.push_back({&meshes[k], color});
         }
+        std::vector<slicing::DisplayMesh<3>> marks;
+        for (const Mark& m : frame_marks[f]) marks.push_back(marker_cube(m.at, m.half));
+        for (std::size_t k = 0; k < marks.size(); ++k) frame.meshes.push_back({&marks[k], frame_marks[f][k].color, true});
         renderer.draw(frame, size.width, size.height);
         char name[32];
         std::snprintf(name, sizeof name, "frame_%05zu.png", f);
@@ -249,7 +283,8 @@ CLI::App* add_render_verb(CLI::App& app, RenderOptions& o) {
       ->type_name("FILE.png");
   cmd->add_option("--replay", o.replay,
                   "Recordings (docs/recording-format.md) that drive the scene through the input layer while it "
-                  "is drawn, as `wedge replay` does")
+                  "is drawn, as `wedge replay` does; the hands are marked (left cyan, right magenta, green while "
+                  "holding, yellow with a haptic pulse, and the hit's point)")
       ->type_name("RECORDING...")
       ->expected(1, -1);
   cmd->add_option("--subdivisions", o.subdivisions,

@@ -7,10 +7,21 @@
 #include <array>
 #include <vector>
 
+#include "wedge/render/renderer.hpp"
 #include "wedge/slicing/world_slices.hpp"
 #include "wedge/world.hpp"
 
 namespace wedge::cli {
+
+// The marks' colours, the same in every picture (`wedge render --replay`, `wedge view`, `wedge xr`): a
+// hand is cyan (left) or magenta (right), green while it holds a body, and yellow while a haptic pulse
+// plays, as is the point where the held body hit.
+inline constexpr render::Color kFlashColor{1.0f, 0.85f, 0.0f};
+inline render::Color hand_color(int hand, bool holding, bool flash) {
+  if (flash) return kFlashColor;
+  if (holding) return {0.1f, 0.9f, 0.2f};
+  return hand == 0 ? render::Color{0.0f, 0.9f, 0.9f} : render::Color{1.0f, 0.1f, 0.8f};
+}
 
 // A box about `center` with edges along the columns of `axes` (orthonormal, right-handed) and these half
 // extents: twelve outward triangles with flat normals.

@@ -138,7 +138,6 @@ class SliceView {
   // The hands, and the flashes of the pulses still shown (those run out are dropped).
   void mark_hands(const World<N>& world, const input::Interaction<N>* recorded, const MouseHand& hand,
                   PulseDisplay<N>& pulses) {
-    const render::Color kFlash{1.0f, 0.85f, 0.0f};
     std::erase_if(pulses.flashes, [&](const auto& f) { return f.second <= world.time(); });
     for (int k = 0; k < input::kHandCount; ++k) {
       std::optional<Eigen::Vector3d> at;
@@ -146,10 +145,9 @@ class SliceView {
       if (!recorded && k == 1 && hand.holding) at = hand.point;
       if (!at) continue;
       const bool flash = pulses.hand_flash[std::size_t(k)] > world.time();
-      add_marker(marker_cube(*at, flash ? 0.06 : 0.04),
-                 flash ? kFlash : (k == 0 ? render::Color{0.0f, 0.9f, 0.9f} : render::Color{1.0f, 0.1f, 0.8f}));
+      add_marker(marker_cube(*at, flash ? 0.06 : 0.04), hand_color(k, false, flash));
     }
-    for (const auto& f : pulses.flashes) add_marker(marker_cube(slices_.to_slice_point(f.first), 0.05), kFlash);
+    for (const auto& f : pulses.flashes) add_marker(marker_cube(slices_.to_slice_point(f.first), 0.05), kFlashColor);
   }
 
   // The contacts of the last step that the slice shows (contact_marks), sized by `mark_`.

@@ -62,16 +62,13 @@ class HeadsetView {
     slices_.slice(world, meshes_);
     overlays_.clear();
     colors_.clear();
-    const render::Color kFlash{1.0f, 0.85f, 0.0f};
     for (int k = 0; k < input::kHandCount; ++k) {
       if (!hands.tracked(k)) continue;
       const bool flash = flash_until[std::size_t(k)] > world.time(), holding = hands.held(k).has_value();
-      const render::Color c = flash ? kFlash : holding ? render::Color{0.1f, 0.9f, 0.2f}
-                                    : k == 0          ? render::Color{0.0f, 0.9f, 0.9f}
-                                                      : render::Color{1.0f, 0.1f, 0.8f};
-      add(marker_cube(slices_.to_slice_point(hands.hand_point(k)), flash || holding ? 0.035 : 0.025), c);
+      add(marker_cube(slices_.to_slice_point(hands.hand_point(k)), flash || holding ? 0.035 : 0.025),
+          hand_color(k, holding, flash));
     }
-    for (const Vec<N>& p : hits) add(marker_cube(slices_.to_slice_point(p), 0.03), kFlash);
+    for (const Vec<N>& p : hits) add(marker_cube(slices_.to_slice_point(p), 0.03), kFlashColor);
     add_gauges();
   }
 
