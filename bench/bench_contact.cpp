@@ -123,8 +123,7 @@ int dynamic_count(const World<N>& w) {
 template <int N>
 void time_wedge(benchmark::State& state, const World<N>& start, double h, int workers = 1, bool continuous = true) {
   World<N> w = start;
-  w.settings().workers = workers;
-  w.settings().contact.continuous = continuous;
+  w.update_settings([&](auto& s) { s.workers = workers; s.contact.continuous = continuous; });
   set_start_counters(state, w, awake_count(w), dynamic_count(w));
   for (auto _ : state) w.step(h);
   state.counters["pairs"] = double(w.contacts().size());
@@ -146,8 +145,7 @@ void Pyramid2D_Wedge(benchmark::State& state, bool sleep, int workers = 1, bool 
                                      [&] { return wedge_pyramid(kPyramidRows, sleep); });
   const BodyId top{std::uint32_t(initial.body_count() - 1)};
   World<2> w = start;
-  w.settings().workers = workers;
-  w.settings().contact.continuous = continuous;
+  w.update_settings([&](auto& s) { s.workers = workers; s.contact.continuous = continuous; });
   set_start_counters(state, w, awake_count(w), dynamic_count(w));
   state.counters["top_dy"] = w.body(top).center[1] - initial.body(top).center[1];
   state.counters["top_dx"] = w.body(top).center[0] - initial.body(top).center[0];

@@ -57,8 +57,10 @@ template <int N>
 class WedgeScene {
  public:
   explicit WedgeScene(World<N> w, int workers = 1, int substeps = 0) : world_(std::move(w)) {
-    world_.settings().workers = workers;
-    if (substeps > 0) world_.settings().contact.substeps = substeps;
+    world_.update_settings([&](auto& s) {
+      s.workers = workers;
+      if (substeps > 0) s.contact.substeps = substeps;
+    });
     for (int i = 0; i < world_.body_count(); ++i)
       if (world_.bodies()[std::size_t(i)].is_dynamic()) boxes_.push_back(BodyId{std::uint32_t(i)});
   }

@@ -58,7 +58,7 @@ struct Throw {
 template <int N>
 Throw throw_at_wall(const Vec<N>& h, double speed, double spin, double angle, double start, bool continuous) {
   World<N> w;
-  w.settings().contact.continuous = continuous;
+  w.update_settings([&](auto& s) { s.contact.continuous = continuous; });
   BodyDef<N> wall;
   wall.type = BodyType::Static;
   Vec<N> wh = Vec<N>::Constant(2.0);
@@ -135,8 +135,7 @@ TEMPLATE_TEST_CASE("a box sliding at 20 m/s on a static floor is not held back b
   Vec<N> end[2];
   for (const bool continuous : {false, true}) {
     World<N> w;
-    w.settings().gravity[1] = -9.81;
-    w.settings().contact.continuous = continuous;
+    w.update_settings([&](auto& s) { s.gravity[1] = -9.81; s.contact.continuous = continuous; });
     BodyDef<N> floor;
     floor.type = BodyType::Static;
     Vec<N> fh = Vec<N>::Constant(50.0);

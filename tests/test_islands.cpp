@@ -43,7 +43,7 @@ TEST_CASE("a resting stack falls asleep, then wakes as an island when a ball hit
 TEST_CASE("sleeping off keeps every body awake, and once on, a resting stack sleeps time_to_sleep later",
           "[contact][sleep]") {
   World<3> w(with_gravity());
-  w.settings().contact.allow_sleep = false;
+  w.update_settings([&](auto& s) { s.contact.allow_sleep = false; });
   scenes::add_ground(w);
   scenes::add_box_tower(w, 3);
   const double h = 1.0 / 120.0;
@@ -51,7 +51,7 @@ TEST_CASE("sleeping off keeps every body awake, and once on, a resting stack sle
   for (int i = 1; i <= 3; ++i) CHECK(w.is_awake(BodyId{std::uint32_t(i)}));
   // The rest while sleeping was off does not count: the island sleeps once it has rested
   // time_to_sleep (0.5 s, 60 steps) with sleeping on, not at the first step, and not much later.
-  w.settings().contact.allow_sleep = true;
+  w.update_settings([&](auto& s) { s.contact.allow_sleep = true; });
   int steps = 0;
   while (w.is_awake(BodyId{3}) && steps < 240) {
     w.step(h);

@@ -30,7 +30,7 @@ TEST_CASE("fig1: the stack of three tesseracts stands for 60 s within 1 mm", "[s
   double h = 0.0;
   for (const bool sleep : {false, true}) {
     World<4> w = load<4>("fig1_stack_4d.json", h);
-    w.settings().contact.allow_sleep = sleep;
+    w.update_settings([&](auto& s) { s.contact.allow_sleep = sleep; });
     const auto start = drift::centres(w);
     double worst = 0.0;
     for (int i = 0; i < int(60.0 / h); ++i) {
@@ -103,12 +103,12 @@ TEST_CASE("the 20-row box pyramids rest without collapsing (2D and 3D)", "[scene
   double h = 0.0;
   {
     World<2> w = load<2>("pyramid_2d.json", h);
-    w.settings().contact.allow_sleep = false;
+    w.update_settings([&](auto& s) { s.contact.allow_sleep = false; });
     check(w, h);
   }
   {
     World<3> w = load<3>("pyramid_3d.json", h);
-    w.settings().contact.allow_sleep = false;
+    w.update_settings([&](auto& s) { s.contact.allow_sleep = false; });
     check(w, h);
   }
 }

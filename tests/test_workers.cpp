@@ -81,7 +81,7 @@ std::uint64_t same_for_any_workers(const World<N>& start, int steps, double h) {
   std::vector<World<N>> worlds;
   for (const int workers : {1, 2, 3}) {
     worlds.push_back(start);
-    worlds.back().settings().workers = workers;
+    worlds.back().update_settings([&](auto& s) { s.workers = workers; });
   }
   const int before = thread_count();
   int mismatches = 0;
@@ -178,8 +178,8 @@ TEST_CASE("workers: out of 1..64 is refused with a message naming the setting", 
   s.workers = 0;
   CHECK_THROWS_WITH(World<3>(s), Catch::Contains("workers"));
   World<3> world;
-  world.settings().workers = -2;
-  CHECK_THROWS_WITH(world.step(0.01), Catch::Contains("workers"));
+  CHECK_THROWS_WITH(world.update_settings([&](auto& ws) { ws.workers = -2; }), Catch::Contains("workers must be in 1..64"));
+  CHECK(world.settings().workers == 1);  // refused: unchanged
 }
 
 TEST_CASE("workers: piles step bit-identically with 1, 2 and 3 workers (soft step, 2D-4D)", "[workers][contact]") {

@@ -172,7 +172,10 @@ TEST_CASE("ray_cast hits a half-space ground and respects max_distance and inclu
   CHECK_THROWS(world.ray_cast(o, Vec<4>::Zero(), 1.0));
 }
 
-TEST_CASE("set_gravity wakes sleeping bodies and refuses non-finite vectors", "[world]") {
+namespace {
+
+// A 20 cm box (body 1) on the ground under gravity -9.81 m/s^2 along y, asleep after 2 s at rest.
+World<3> box_asleep_on_ground() {
   WorldSettings<3> s;
   s.gravity = Vec<3>(0, -9.81, 0);
   World<3> world(s);
@@ -180,13 +183,48 @@ TEST_CASE("set_gravity wakes sleeping bodies and refuses non-finite vectors", "[
   ground.type = BodyType::Static;
   ground.shape = std::make_shared<const Shape<3>>(Shape<3>::halfspace(Vec<3>(0, 1, 0), 0.0));
   world.add_body(ground);
-  const BodyId box = world.add_body(body<3>(Shape<3>::box(Vec<3>::Constant(0.1)), Vec<3>(0, 0.1, 0)));
+  world.add_body(body<3>(Shape<3>::box(Vec<3>::Constant(0.1)), Vec<3>(0, 0.1, 0)));
   for (int i = 0; i < 240; ++i) world.step(1.0 / 120.0);
+  return world;
+}
+
+}  // namespace
+
+TEST_CASE("set_gravity wakes sleeping bodies and refuses non-finite vectors", "[world]") {
+  World<3> world = box_asleep_on_ground();
+  const BodyId box{1};
   REQUIRE_FALSE(world.is_awake(box));
   CHECK_THROWS_WITH(world.set_gravity(Vec<3>(NAN, 0, 0)), Catch::Contains("finite"));
   world.set_gravity(Vec<3>(0, -9.81, 0));  // unchanged: stays asleep
   CHECK_FALSE(world.is_awake(box));
   world.set_gravity(Vec<3>(0, 9.81, 0));  // gravity reversed: it must fall up
+  CHECK(world.is_awake(box));
+  for (int i = 0; i < 60; ++i) world.step(1.0 / 120.0);
+  CHECK(world.body(box).center[1] > 0.1 + 0.5 * 9.81 * 0.25 - 0.05);  // free fall upward for 0.5 s
+}
+
+TEST_CASE("set_settings checks what it is given, leaves the world unchanged on refusal, wakes on new gravity",
+          "[world]") {
+  World<3> world = box_asleep_on_ground();
+  const BodyId box{1};
+  REQUIRE_FALSE(world.is_awake(box));
+  // Each refusal names the field and changes nothing, the other fields of the same call included.
+  CHECK_THROWS_WITH(world.update_settings([](auto& ws) { ws.contact.substeps = 0; }), Catch::Contains("substeps"));
+  CHECK_THROWS_WITH(world.update_settings([](auto& ws) {
+                      ws.gravity = Vec<3>(0, 9.81, 0);
+                      ws.contact.contact_margin = -1.0;
+                    }),
+                    Catch::Contains("contact_margin"));
+  CHECK_THROWS_WITH(world.update_settings([](auto& ws) { ws.gravity[0] = INFINITY; }), Catch::Contains("gravity"));
+  CHECK(world.settings().gravity == Vec<3>(0, -9.81, 0));
+  CHECK(world.settings().contact.substeps == WorldSettings<3>{}.contact.substeps);
+  CHECK_FALSE(world.is_awake(box));
+  // Accepted: the new substeps hold, and gravity turned upward wakes the box, which falls up.
+  world.update_settings([](auto& ws) {
+    ws.contact.substeps = 2;
+    ws.gravity = Vec<3>(0, 9.81, 0);
+  });
+  CHECK(world.settings().contact.substeps == 2);
   CHECK(world.is_awake(box));
   for (int i = 0; i < 60; ++i) world.step(1.0 / 120.0);
   CHECK(world.body(box).center[1] > 0.1 + 0.5 * 9.81 * 0.25 - 0.05);  // free fall upward for 0.5 s

@@ -29,7 +29,7 @@ int replay(const Json& doc, const ReplayOptions& o, const std::optional<double>&
   const Scene<N> scene = load_scene<N>(doc, file);
   const double h = dt ? *dt : scene.timestep;
   World<N> world = scene.make_world(file);
-  world.settings().workers = workers;
+  world.update_settings([&](auto& s) { s.workers = workers; });
 
   ReplayInput<N> replay(scene, world, o.recordings, file, h);
   const double end = until ? *until : replay.source().duration();

@@ -26,7 +26,7 @@ int simulate(const Json& doc, const SimulateOptions& options, const StepOptions&
   const Scene<N> scene = load_scene<N>(doc, file);
   const double h = run.dt ? *run.dt : scene.timestep;
   World<N> world = scene.make_world(file);
-  world.settings().workers = workers;
+  world.update_settings([&](auto& s) { s.workers = workers; });
 
   OutputSink out(options.out);  // nothing appears at --out unless the whole run succeeds
   auto emit = [&](const OutJson& line) {

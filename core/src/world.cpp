@@ -13,6 +13,7 @@
 #include "wedge/fp_env.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge {
 
@@ -123,14 +124,30 @@ void check_material(const Material& m, const std::string& who) {
       !std::isfinite(m.kinetic_friction))
     throw Error(who + ": friction coefficients must be finite and >= 0");
 }
+
+template <int N>
+void check_world_settings(const WorldSettings<N>& s) {
+  if (!all_finite(s.gravity)) throw Error("gravity must be finite");
+  if (s.rotor_repair_interval < 1) throw Error("rotor_repair_interval must be >= 1");
+  if (s.workers < 1 || s.workers > parallel::Workers::kMax)
+    throw Error("workers must be in 1.." + std::to_string(parallel::Workers::kMax) + " (got " +
+                std::to_string(s.workers) + ")");
+  check_contact_settings(s.contact);
+}
 }  // namespace
 
 template <int N>
 World<N>::World(const WorldSettings<N>& settings)
     : settings_(settings), contact_(std::make_unique<contact::ContactState<N>>()) {
-  if (!all_finite(settings_.gravity)) throw Error("gravity must be finite");
-  if (settings_.rotor_repair_interval < 1) throw Error("rotor_repair_interval must be >= 1");
-  check_contact_settings(settings_.contact);
+  check_world_settings(settings_);
+  contact_->workers.resize(settings_.workers);
+}
+
+template <int N>
+void World<N>::set_settings(const WorldSettings<N>& settings) {
+  check_world_settings(settings);
+  set_gravity(settings.gravity);
+  settings_ = settings;
   contact_->workers.resize(settings_.workers);
 }
 
@@ -603,11 +620,7 @@ std::uint64_t World<N>::state_hash() const {
   template Body<N> make_body<N>(const BodyDef<N>&);                                            \
   template Bivector<N> gyroscopic_step<N>(const BivMat<N>&, const Bivector<N>&, double, GyroscopicMethod); \
   template class World<N>;
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge

@@ -95,12 +95,25 @@ class World {
   BodyId add_body(const BodyDef<N>& def);
   int body_count() const { return int(bodies_.size()); }
   // Every call taking a BodyId checks it and throws wedge::Error for an id this world never gave out.
+  // The references body() and bodies() return stay valid until the next add_body, which may move every
+  // body; keep the BodyId, not the reference, across it. Writing a body's state through body() (a tool
+  // posing bodies to draw them) bypasses waking and the checks: input goes through the apply_* calls.
   const Body<N>& body(BodyId id) const { return bodies_[check(id)]; }
   Body<N>& body(BodyId id) { return bodies_[check(id)]; }
   const std::vector<Body<N>>& bodies() const { return bodies_; }
   const std::string& name(BodyId id) const { return names_[check(id)]; }
   const WorldSettings<N>& settings() const { return settings_; }
-  WorldSettings<N>& settings() { return settings_; }
+  // Replaces the settings between steps, checked as the constructor checks them: throws wedge::Error
+  // naming the field, and then the world is unchanged. A new gravity wakes the sleeping bodies, as
+  // set_gravity does.
+  void set_settings(const WorldSettings<N>& settings);
+  // The same for a change to the current settings: world.update_settings([](auto& s) { s.workers = 2; }).
+  template <class Change>
+  void update_settings(Change&& change) {
+    WorldSettings<N> s = settings_;
+    change(s);
+    set_settings(s);
+  }
   const Shape<N>* shape(BodyId id) const { return shapes_[check(id)].get(); }
   const Material& material(BodyId id) const { return materials_[check(id)]; }
   // The application's own tag for a body (an index into its tables, a pointer's bits); never read here.
