@@ -26,7 +26,9 @@ for t in "${targets[@]}"; do
   echo "== $t: $runs runs"
   log="$build/fuzz_$t.log"
   status=0
-  "$build/tests/fuzz/$t" -runs="$runs" -timeout=10 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 \
+  # (-timeout is wall-clock: a unit that runs in half a second alone can take ten times that while a build
+  # shares the machine, so the limit for a hang is a minute.)
+  "$build/tests/fuzz/$t" -runs="$runs" -timeout=60 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 \
     "$scratch" "tests/fuzz/corpus/$t" >"$log" 2>&1 || status=$?
   grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb|Done|SUMMARY|fuzz:)|#[0-9]+ +DONE" "$log" || true
   if [ "$status" -ne 0 ]; then

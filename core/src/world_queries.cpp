@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "contact/contact_system.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 #include "wedge/collision/point_query.hpp"
 #include "wedge/error.hpp"
 #include "wedge/world.hpp"

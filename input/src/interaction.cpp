@@ -9,6 +9,7 @@
 #include "wedge/error.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/frames.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::input {
 
@@ -299,11 +300,7 @@ void Interaction<N>::after_step() {
 #define WEDGE_INSTANTIATE(N)                                                                            \
   template class Interaction<N>;                                                                        \
   template Vec<N> gravity_from_device<N>(const Eigen::Vector3d&, double, bool, double);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::input

@@ -7,6 +7,7 @@
 
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/mass.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::scenes {
 
@@ -101,11 +102,7 @@ BodyId add_box_pile(World<N>& world, int count, std::uint64_t seed, double half,
   template BodyId add_box_pyramid<N>(World<N>&, int, double, double);                     \
   template BodyId add_box_tower<N>(World<N>&, int, double, double);                       \
   template BodyId add_box_pile<N>(World<N>&, int, std::uint64_t, double, double);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::scenes

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "collision/narrow.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::collision {
 namespace {
@@ -138,11 +139,7 @@ Manifold<N> box_box(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
 #define WEDGE_INSTANTIATE(N)                                                                                \
   template Manifold<N> box_box<N>(const Shape<N>&, const Transform<N>&, const Shape<N>&, const Transform<N>&, \
                                   const CollisionSettings&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::collision

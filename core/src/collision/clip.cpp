@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "collision/narrow.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::collision {
 namespace {
@@ -105,11 +106,7 @@ void reduce_into(const std::vector<ContactPoint<N>>& points, Manifold<N>& m) {
                                 const Vec<N>&, double, double, double, std::uint64_t,                               \
                                 std::vector<ContactPoint<N>>&);                                                     \
   template void reduce_into<N>(const std::vector<ContactPoint<N>>&, Manifold<N>&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::collision

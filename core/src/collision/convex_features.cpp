@@ -5,6 +5,7 @@
 #include <set>
 
 #include "linalg/decompositions.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge {
 namespace {
@@ -128,11 +129,7 @@ ConvexFeatures<N> box_features(const Vec<N>& h) {
 #define WEDGE_INSTANTIATE(N)                                                     \
   template ConvexFeatures<N> convex_features<N>(const ConvexHull<N>& hull); \
   template ConvexFeatures<N> box_features<N>(const Vec<N>& half_extents);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge

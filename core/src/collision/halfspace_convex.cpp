@@ -2,6 +2,7 @@
 // below the plane (within the contact margin) is a contact point. A tesseract resting flat gives the 8
 // corners of its bottom cell; a cylinder on its end gives points around the rim of the end disk.
 #include "collision/narrow.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::collision {
 
@@ -37,11 +38,7 @@ Manifold<N> halfspace_convex(const Shape<N>& a, const Transform<N>& ta, const Sh
 #define WEDGE_INSTANTIATE(N)                                                                         \
   template Manifold<N> halfspace_convex<N>(const Shape<N>&, const Transform<N>&, const Shape<N>&, \
                                            const Transform<N>&, const CollisionSettings&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::collision

@@ -7,6 +7,7 @@
 
 #include "collision/narrow.hpp"
 #include "wedge/collision/gjk.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge {
 namespace {
@@ -71,11 +72,7 @@ Manifold<N> collide(const Shape<N>& a, const Transform<N>& ta, const Shape<N>& b
 #define WEDGE_INSTANTIATE(N)                                                                                 \
   template Manifold<N> collide<N>(const Shape<N>&, const Transform<N>&, const Shape<N>&, const Transform<N>&, \
                                   const CollisionSettings&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "collision/narrow.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 #include "wedge/collision/gjk.hpp"
 
 namespace wedge {

@@ -8,6 +8,7 @@
 
 #include "collision/narrow.hpp"
 #include "linalg/decompositions.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::collision {
 namespace {
@@ -203,11 +204,7 @@ separated:  // minus the gap along the separating axis: a lower bound the dispat
                                 const Transform<N>&, const SatAxis<N>&, double, Manifold<N>&);             \
   template Manifold<N> polytope_polytope<N>(const Shape<N>&, const Transform<N>&, const Shape<N>&, \
                                             const Transform<N>&, const CollisionSettings&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::collision

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 #include "wedge/collision/aabb.hpp"
 
 namespace wedge::collision {

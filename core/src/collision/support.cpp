@@ -4,6 +4,7 @@
 
 #include "collision/narrow.hpp"
 #include "wedge/error.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::collision {
 namespace {
@@ -200,11 +201,7 @@ double shape_scale(const Shape<N>& shape) {
   template bool local_contains<N>(const Shape<N>&, const Vec<N>&, double);                                     \
   template double shape_scale<N>(const Shape<N>&);                                                             \
   template const std::vector<ProductFactor>& product_factors<N>(const Shape<N>&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::collision

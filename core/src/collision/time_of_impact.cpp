@@ -6,7 +6,7 @@
 
 #include "collision/narrow.hpp"
 #include "collision/shape_extent.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/gjk.hpp"
 #include "wedge/ga/exp_log.hpp"

@@ -4,7 +4,7 @@
 #include <Eigen/Cholesky>
 
 #include "contact/impulses.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::contact {
 

@@ -22,7 +22,7 @@
 #include <cmath>
 
 #include "contact/contact_system.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/narrow_phase.hpp"
 #include "wedge/collision/time_of_impact.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "contact/contact_system.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::contact {
 

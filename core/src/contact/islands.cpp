@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/contact_system.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::contact {
 
@@ -149,11 +150,7 @@ void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const Cont
 #define WEDGE_INSTANTIATE(N)                                                     \
   template void compute_levels<N>(ContactState<N>&, const std::vector<Body<N>>&); \
   template void update_islands<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::contact

@@ -14,6 +14,7 @@
 #include "contact/lane_fill.hpp"
 #include "linalg/isotropic.hpp"
 #include "wedge/collision/narrow_phase.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::contact {
 
@@ -717,11 +718,7 @@ void report_events(ContactState<N>& s) {
   template void find_contacts<N>(ContactState<N>&, std::vector<Body<N>>&, const Shapes<N>&,                   \
                                  const std::vector<Material>&, const ContactSettings&, double, StepProfile*); \
   template void report_events<N>(ContactState<N>&);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::contact

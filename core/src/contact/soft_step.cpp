@@ -29,7 +29,7 @@
 #include "contact/impulses.hpp"
 #include "contact/lane_fill.hpp"
 #include "contact/lanes.hpp"
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::contact {
 

@@ -14,6 +14,7 @@
 #include <Eigen/LU>
 
 #include "contact/impulses.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::contact {
 
@@ -310,11 +311,7 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
 #define WEDGE_INSTANTIATE(N)                                                                                  \
   template void process_collisions<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double); \
   template void process_contacts<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double);
-WEDGE_INSTANTIATE(2)
-WEDGE_INSTANTIATE(3)
-WEDGE_INSTANTIATE(4)
-WEDGE_INSTANTIATE(5)
-WEDGE_INSTANTIATE(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
 }  // namespace wedge::contact

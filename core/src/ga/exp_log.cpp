@@ -1,7 +1,7 @@
 // The general (eigensolver) paths of exp and log, compiled once for N = 2..6 (see exp_log.hpp).
 #include "wedge/ga/exp_log.hpp"
 
-#include "instantiate.hpp"
+#include "wedge/dimensions.hpp"
 #include "linalg/decompositions.hpp"
 
 namespace wedge {
