@@ -23,7 +23,7 @@ namespace {
 using namespace wedge::cli;
 
 // Why this build has no program for the verb, if it has none by design (the build's options).
-const char* missing_by_design(const std::string& verb) {
+const char* missing_by_design([[maybe_unused]] const std::string& verb) {
 #ifndef WEDGE_HAVE_VIEW
   if (verb == "view") return "it was built without the viewer (WEDGE_BUILD_VIEWER=OFF)";
 #endif
