@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "wedge/collision/broadphase.hpp"
+#include "wedge/collision/detail/broadphase.hpp"
 
 namespace {
 

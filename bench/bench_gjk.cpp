@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "wedge/collision/epa.hpp"
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/epa.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/products.hpp"
 

@@ -1,4 +1,4 @@
-// The broad phase (wedge/collision/broadphase.hpp) against an O(n^2) brute force over the same fat boxes,
+// The broad phase (wedge/collision/detail/broadphase.hpp) against an O(n^2) brute force over the same fat boxes,
 // through random create / move / destroy histories in 2D..6D; the fat-box rules on hand-checked values;
 // the pair list's form (sorted, unique, first < second) and its independence of the tree's history;
 // and the sub-quadratic cost of update_pairs for 10,000 bodies in 4D.
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "uniform_vec.hpp"
-#include "wedge/collision/broadphase.hpp"
+#include "wedge/collision/detail/broadphase.hpp"
 #include "wedge/error.hpp"
 
 namespace {

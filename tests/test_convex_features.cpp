@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "test_util.hpp"
-#include "wedge/collision/convex_features.hpp"
+#include "wedge/collision/detail/convex_features.hpp"
 #include "wedge/hull.hpp"
 
 using namespace wedge;

@@ -1,4 +1,4 @@
-// EPA (wedge/collision/epa.hpp) for n = 2..6 against independent truth:
+// EPA (wedge/collision/detail/epa.hpp) for n = 2..6 against independent truth:
 //   - overlapping random polytopes and rotated boxes: the exact penetration depth of the Qhull hull of the
 //     Minkowski difference (the smallest facet offset, tests/support/convex_oracle.hpp); the normal is
 //     checked through what it must satisfy rather than against one facet, so that ties (several facets
@@ -16,8 +16,8 @@
 #include <random>
 #include <vector>
 
-#include "wedge/collision/epa.hpp"
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/epa.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 #include "wedge/hull.hpp"
 #include "convex_oracle.hpp"
 #include "test_util.hpp"

@@ -1,4 +1,4 @@
-// GJK (wedge/collision/gjk.hpp) for n = 2..6 against independent truth:
+// GJK (wedge/collision/detail/gjk.hpp) for n = 2..6 against independent truth:
 //   - random convex polytopes: the distance from the origin to the Qhull hull of the Minkowski difference
 //     {a_i - b_j}, by brute-force projection onto every face (tests/support/convex_oracle.hpp), and the
 //     overlap status from the hull's facet offsets;
@@ -19,7 +19,7 @@
 #include <random>
 #include <vector>
 
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 #include "wedge/hull.hpp"
 #include "convex_oracle.hpp"
 #include "test_util.hpp"

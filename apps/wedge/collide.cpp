@@ -18,7 +18,7 @@
 #include "scenes.hpp"
 #include "verbs.hpp"
 #include "wedge/collision/aabb.hpp"
-#include "wedge/collision/broadphase.hpp"
+#include "wedge/collision/detail/broadphase.hpp"
 #include "wedge/collision/narrow_phase.hpp"
 #include "wedge/fp_env.hpp"
 #include "wedge/ga/products.hpp"

@@ -8,7 +8,7 @@
 #include <variant>
 #include <vector>
 
-#include "wedge/collision/convex_features.hpp"
+#include "wedge/collision/detail/convex_features.hpp"
 #include "wedge/ga/types.hpp"
 #include "wedge/hull.hpp"
 #include "wedge/mesh.hpp"

@@ -1,4 +1,4 @@
-#include "wedge/collision/broadphase.hpp"
+#include "wedge/collision/detail/broadphase.hpp"
 
 #include <algorithm>
 #include <cmath>

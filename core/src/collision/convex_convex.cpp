@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "collision/narrow.hpp"
-#include "wedge/collision/epa.hpp"
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/epa.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 #include "wedge/dimensions.hpp"
 
 namespace wedge::collision {

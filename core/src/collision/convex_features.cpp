@@ -1,4 +1,4 @@
-#include "wedge/collision/convex_features.hpp"
+#include "wedge/collision/detail/convex_features.hpp"
 
 #include <algorithm>
 #include <iterator>

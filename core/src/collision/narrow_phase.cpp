@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "collision/narrow.hpp"
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 #include "wedge/dimensions.hpp"
 
 namespace wedge {

@@ -4,7 +4,7 @@
 
 #include "collision/narrow.hpp"
 #include "wedge/dimensions.hpp"
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 
 namespace wedge {
 

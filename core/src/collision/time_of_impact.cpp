@@ -8,7 +8,7 @@
 #include "collision/shape_extent.hpp"
 #include "wedge/dimensions.hpp"
 #include "wedge/collision/aabb.hpp"
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/factorize.hpp"
 #include "wedge/ga/products.hpp"

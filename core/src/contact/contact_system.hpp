@@ -23,7 +23,7 @@
 
 #include "wedge/body.hpp"
 #include "wedge/collision/aabb.hpp"
-#include "wedge/collision/broadphase.hpp"
+#include "wedge/collision/detail/broadphase.hpp"
 #include "wedge/contact.hpp"
 #include "wedge/grab.hpp"
 #include "wedge/profile.hpp"

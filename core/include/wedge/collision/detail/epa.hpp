@@ -24,7 +24,7 @@
 #include <cmath>
 #include <vector>
 
-#include "wedge/collision/gjk.hpp"
+#include "wedge/collision/detail/gjk.hpp"
 
 namespace wedge {
 
