@@ -11,9 +11,10 @@
 #   asan-full  The whole suite built and run under ASan + UBSan (about an hour on 2 cores).
 #   tsan       The multi-threaded step's tests (--workers) under ThreadSanitizer.
 #   debug      The program built Debug (gcc -O0): every shipped scene's and recording's state hash, in
-#              each lane width, must come out as the Release build's (determinism across builds). Needs
-#              `release` first.
-# CI runs `release asan` (the README's test command). Any sanitizer report fails.
+#              each instruction set of the solver's lanes (WEDGE_SIMD: the best the CPU has, AVX2,
+#              SSE2), must come out as the Release build's (determinism across builds). Needs `release`
+#              first.
+# CI runs `release install asan` (the README's test command). Any sanitizer report fails.
 #   tools/check.sh [release|install|asan|asan-full|tsan|debug]...
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -517,12 +517,11 @@ template <int N>
 void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
   const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
   const bool track = soft && !contact_->constraints.empty();
-  // (flatten: exp, to_matrix and the rotation's product inline; as calls they were 6% of a 2D
-  // pyramid's step.)
+  // (flatten: exp, to_matrix and the rotation's product are inlined into the sweep.)
   if (soft) {
     // The soft step's sub-steps: the velocities are the solver bodies', there is no split impulse (vp
-    // and wp are zero), and which bodies move is the solver body's flag: the body's own type and the
-    // awake flags are a cache line more per body, eight times a step.
+    // and wp are zero), and which bodies move is the solver body's flag, read with its velocities
+    // (the body's own type and the awake flags would be two more reads per body and sub-step).
     // The solve pass's finish, body by body, joins this sweep (contact::finish_pass).
     const bool finish = contact_->solve_finish_pending;
     contact_->solve_finish_pending = false;

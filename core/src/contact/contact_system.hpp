@@ -34,9 +34,9 @@ namespace wedge::contact {
 
 // A pair of bodies whose bounding boxes overlap (or a half-space and a body below its plane), a < b.
 // Its fields are in the order the step reads them: the soft step's build reads the pairs in colour
-// order, where each cache line of a pair is a miss, and all it reads comes first (through warm_arm, six
-// lines in 2D); what the recycling reads follows. The unpacking at the end of the step, in colour
-// order too, writes one line in 2D (warm_normal to warm_tangent).
+// order, not in memory order, so all it reads comes first (through warm_arm), then what the recycling
+// reads; the unpacking at the end of the step, in colour order too, writes warm_normal to
+// warm_tangent, side by side.
 template <int N>
 struct alignas(64) Pair {
   std::uint32_t a = 0, b = 0;
@@ -105,9 +105,9 @@ inline void keep_warm_keys(Pair<N>& pair, int count) {
 }
 
 // A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
-// What the soft step's sweeps over the bodies read comes first, in as few cache lines as it fits (a
-// tall pyramid's bodies do not fit the cache): the passes gather v and w, the sweeps between them
-// these and the warm start, the snapshot and the velocity integration.
+// What the soft step's sweeps over the bodies read comes first, packed together (a tall pyramid's
+// bodies do not fit the cache): the passes gather v and w, the sweeps between them these and the warm
+// start, the snapshot and the velocity integration.
 template <int N>
 struct alignas(64) SolverBody {
   Vec<N> v = Vec<N>::Zero();
@@ -484,7 +484,7 @@ template <int N>
 void flush_pass_change(ContactState<N>& state);
 // One body's part of it: how far it has moved (dp) and turned (dq = R R0^-1) since the step began, for
 // the relax pass's separations. World::integrate_positions calls it for each body it moves in the soft
-// step, in the same sweep (one more sweep over every body per sub-step cost 4-5% of a 2D pyramid's step).
+// step, in the same sweep, rather than in a sweep of its own over every body per sub-step.
 template <int N>
 inline void track_body_motion(SolverBody<N>& sb, const Body<N>& body) {
   sb.dp = body.center - sb.x0;
@@ -570,9 +570,9 @@ inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const SolverBody<
   if (b.isotropic) return b.iso_inv_inertia * t;
   return b.inv_inertia * t;
 }
-// The change of the body's angular velocity per impulse j at lever arm r: I^-1 (r ^ j). (Formed here
-// rather than kept per point as the matrix I^-1 [r]_*, which was 40% of a 4D point's bytes; for an
-// isotropic body it is a scale.)
+// The change of the body's angular velocity per impulse j at lever arm r: I^-1 (r ^ j). Formed here
+// rather than kept per point as the k x N matrix I^-1 [r]_*, which would be most of a point's size;
+// for an isotropic body it is a scale.
 template <int N>
 inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const SolverBody<N>& b, const Vec<N>& r, const Vec<N>& j) {
   return inverse_inertia_times(b, outer<N>(r, j).c);

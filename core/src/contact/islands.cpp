@@ -100,8 +100,8 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
 // island whose bodies have all been still for time_to_sleep falls asleep, velocities set to zero.
 template <int N>
 void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
-  // Sleeping off: nothing would read the islands (Box2D v3 skips its island work likewise; here it was
-  // 2.5% of a 2D pyramid's step). The rest timers restart, so that turning sleep on does not put an
+  // Sleeping off: nothing would read the islands (Box2D v3 skips its island work likewise). The rest
+  // timers restart, so that turning sleep on does not put an
   // island to sleep for the rest it had while sleeping was off.
   if (!settings.allow_sleep) {
     std::fill(s.sleep_time.begin(), s.sleep_time.end(), 0.0);

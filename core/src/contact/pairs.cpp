@@ -43,7 +43,8 @@ void update_broad_phase(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     s.broad_phase.move_proxy(s.proxy[i], s.box[i], Vec<N>(b.velocity * h));
   }
   const bool tree_changed = s.broad_phase.update_pairs();
-  // The half-space pairs, sorted. (The box is read first: the body's type is a cache line more.)
+  // The half-space pairs, sorted. (The box is read first: most bodies are far from every plane, and
+  // their type need not be read.)
   s.halfspace_pairs.swap(s.previous_halfspace_pairs);
   s.halfspace_pairs.clear();
   const double margin = s.broad_phase.settings().margin;
@@ -122,8 +123,7 @@ double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
 
 // One pair's manifold: recycled while the bodies barely move relative to each other, else collided with
 // the speculative margin (below). Reads the bodies, writes only the pair.
-// (flatten: the bodies' rotation matrices and the recycling test inline, 1% of a 2D pyramid's
-// instructions as calls.)
+// (flatten: the bodies' rotation matrices and the recycling test are inlined into it.)
 template <int N>
 [[gnu::flatten]] void collide_pair(const ContactState<N>& s, Pair<N>& p, const std::vector<Body<N>>& bodies,
                                    const Shapes<N>& shapes, const ContactSettings& settings, double h) {
@@ -351,8 +351,7 @@ std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
 // Where in the last step's masses pair p's points may take theirs from, or -1: a recycled manifold
 // keeps its normal and lever arms, and with isotropic bodies of the same masses the effective masses
 // and Jacobian rows are then those of the last step, to the bit (the same function of the same
-// numbers): copied rather than formed again (an eighth of the instructions of a resting pyramid of
-// cubes).
+// numbers): copied rather than formed again.
 template <int N>
 int recycled_masses(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
   if (!(s.built_soft && p.recycled && a.isotropic && b.isotropic && mass_key(a, b) == p.mass_key)) return -1;
@@ -682,7 +681,7 @@ void report_events(ContactState<N>& s) {
   for (Pair<N>& p : s.pairs) {
     if (!p.updated) continue;
     // A penetrating pair touches whatever its impulses: those are read only where they decide, or
-    // for a begin event (most resting pairs penetrate a little; the impulses are a cache line more).
+    // for a begin event (most resting pairs penetrate a little, and need not read them).
     const bool penetrating = p.manifold.count > 0 && p.manifold.depth > 0.0;
     if (p.constraint < 0) p.normal_impulse.fill(0.0);
     if (penetrating && p.touching) continue;  // (touching, and it was: no event)

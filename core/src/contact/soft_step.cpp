@@ -106,8 +106,8 @@ void set_warm_start(ContactState<N>& s) {
 // the first sub-step point by point; after it body by body. The impulses act through lever arms, masses
 // and inertias fixed for the step, so what they change of a body's velocities is what the last
 // sub-step's warm start and passes changed, summed in warm_v and warm_w as they ran: one addition per
-// body instead of a visit to every point (a tenth of a resting pile's instructions went to these
-// visits). Each point's normal_total takes its impulse in the solve pass instead (count_warm_start).
+// body instead of a visit to every point. Each point's normal_total takes its impulse in the solve
+// pass instead (count_warm_start).
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
   if (s.substep == 0) {

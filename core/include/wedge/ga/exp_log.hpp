@@ -35,8 +35,8 @@ inline double sinc(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : s
 //   1.4e-27 and the rounding of x^2 (1/2 - x^2/24) under 1e-24, against a gap of 1.1e-16 between the
 //   doubles below 1, so the one rounding left, of 1 - y, lands where the library's does (checked
 //   against std::cos on 2.7e8 random x in that range, and in test_exp_log.cpp).
-// A resting body turns by that little in a sub-step: the call was 4% of a resting 2D pyramid's step,
-// and 5% of the 100-row one's with the jitter of its tall stack.
+// A resting body turns by that little in a sub-step, so this range is the common one in a resting
+// pile, where the library call would be most of the rotor update.
 inline double cos_near_zero(double x) {
   const double a = std::abs(x);
   if (a < 0x1p-27) return 1.0;

@@ -236,7 +236,23 @@ template <int N>
 Rotor<N> to_even(const Bivector<N>& b) {
   return Rotor<N>::from_parts(0.0, b);
 }
-// The sandwich R x ~R for a vector x. For a unit rotor the result is a pure, equally long vector.
+// The sandwich R x ~R for a vector x: R x (an odd element), then times ~R. For a unit rotor the result
+// is a pure, equally long vector. Expanded, it is the rotation matrix of R (to_matrix) applied to x; in
+// 3D, R = s + b01 e01 + b02 e02 + b12 e12:
+//   x'0 = (s² - b01² - b02² + b12²) x0 + 2 (s b01 - b02 b12) x1 + 2 (s b02 + b01 b12) x2
+//   x'1 = -2 (s b01 + b02 b12) x0 + (s² - b01² + b02² - b12²) x1 + 2 (s b12 - b01 b02) x2
+//   x'2 = 2 (b01 b12 - s b02) x0 - 2 (s b12 + b01 b02) x1 + (s² + b01² - b02² - b12²) x2
+// and in 4D, R = s + b01 e01 + b02 e02 + b03 e03 + b12 e12 + b13 e13 + b23 e23 + p e0123:
+//   x'0 = (s² - p² - b01² - b02² - b03² + b12² + b13² + b23²) x0 + 2 (s b01 + p b23 - b02 b12 - b03 b13) x1
+//         + 2 (s b02 - p b13 + b01 b12 - b03 b23) x2 + 2 (s b03 + p b12 + b01 b13 + b02 b23) x3
+//   x'1 = -2 (s b01 + p b23 + b02 b12 + b03 b13) x0 + (s² - p² - b01² + b02² + b03² - b12² - b13² + b23²) x1
+//         + 2 (s b12 + p b03 - b01 b02 - b13 b23) x2 + 2 (s b13 - p b02 - b01 b03 + b12 b23) x3
+//   x'2 = 2 (p b13 - s b02 + b01 b12 - b03 b23) x0 - 2 (s b12 + p b03 + b01 b02 + b13 b23) x1
+//         + (s² - p² + b01² - b02² + b03² - b12² + b13² - b23²) x2 + 2 (s b23 + p b01 - b02 b03 - b12 b13) x3
+//   x'3 = 2 (b01 b13 + b02 b23 - s b03 - p b12) x0 + 2 (p b02 - s b13 - b01 b03 + b12 b23) x1
+//         - 2 (s b23 + p b01 + b02 b03 + b12 b13) x2 + (s² - p² + b01² + b02² - b03² + b12² - b13² - b23²) x3
+// (a unit rotor has s² + |B|² + p² = 1; tests/test_ga_products.cpp checks these against the kernel). The
+// code forms the two products term by term (blades.hpp): one kernel for every N.
 template <int N>
 Vec<N> rotate(const Rotor<N>& r, const Vec<N>& x) {
   using namespace ga;
