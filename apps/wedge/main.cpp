@@ -35,17 +35,17 @@ const char* missing_by_design([[maybe_unused]] const std::string& verb) {
 
 // Replaces this process with wedge-VERB from this program's folder, given the same arguments. Returns
 // only if that cannot be done, with the exit code after saying why.
-int run_verb_program(const std::string& verb, int argc, char** argv) {
+int run_verb_program(const std::string& verb, const char* argv0, std::vector<std::string> verb_args) {
   if (const char* why = missing_by_design(verb)) {
     std::cerr << "wedge: this build has no '" << verb << "' verb: " << why << "\n";
     return kExitBadInput;
   }
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::filesystem::path program = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / ("wedge-" + verb);
-  std::vector<char*> args(argv, argv + argc);
-  const std::string name = program.string();
-  args[0] = const_cast<char*>(name.c_str());
+  const std::filesystem::path program = (ec ? std::filesystem::path(argv0) : self).parent_path() / ("wedge-" + verb);
+  std::string name = program.string();
+  std::vector<char*> args = {name.data()};
+  for (std::string& a : verb_args) args.push_back(a.data());
   args.push_back(nullptr);
   ::execv(name.c_str(), args.data());
   const int err = errno;
@@ -100,11 +100,7 @@ int main(int argc, char** argv) {
     }
     args = {args[1], "--help"};
   }
-  if (!args.empty() && (args[0] == "view" || args[0] == "xr")) {
-    std::vector<char*> pass = {argv[0]};
-    for (std::string& a : args) pass.push_back(a.data());
-    return run_verb_program(args[0], int(pass.size()), pass.data());
-  }
+  if (!args.empty() && (args[0] == "view" || args[0] == "xr")) return run_verb_program(args[0], argv[0], args);
   if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
       std::find(verbs.begin(), verbs.end(), args[0]) == verbs.end()) {
     std::cerr << "wedge: unknown verb '" << args[0] << "' (the verbs are inertia, simulate, collide, render, "

@@ -89,7 +89,7 @@ int run_replay(const ReplayOptions& o) {
   std::optional<double> until;
   if (!o.until.empty()) {
     double t = 0.0;
-    if (!parse_finite(o.until, t) || !(t >= 0.0) || !std::isfinite(t))
+    if (!parse_finite(o.until, t) || !(t >= 0.0))
       throw Failure(o.scene + ": --until must be a time in seconds >= 0 (got '" + o.until + "')");
     until = t;
   }

@@ -324,7 +324,7 @@ int run_xr(const XrOptions& o) {
   run.every = step.every;
   if (!o.until.empty()) {
     double t = 0.0;
-    if (!parse_finite(o.until, t) || !(t >= 0.0) || !std::isfinite(t))
+    if (!parse_finite(o.until, t) || !(t >= 0.0))
       throw Failure(o.scene + ": --until must be a time in seconds >= 0 (got '" + o.until + "')");
     run.until = t;
   }
