@@ -1,5 +1,5 @@
 // The torque-free Dzhanibekov study (paper section 9, figure 5): box inertia, the initial conditions of
-// every case and the simulation loop, shared by the wedge-dzhanibekov program and tests/test_dzhanibekov.cpp
+// every case and the simulation loop, shared by the wedge-dzhanibekov program and tests/apps/dzhanibekov/test_dzhanibekov.cpp
 // so that the tests check exactly the runs that the plots show.
 //
 // Every run is one free box with World<N> (gravity 0, gyroscopic term on, defaults otherwise), starting

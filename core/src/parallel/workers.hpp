@@ -2,7 +2,7 @@
 // (bodies, constraints of one colour) is cut into one contiguous range per thread; the calling thread
 // takes the first range and waits for the others. Which thread runs an item never changes what is
 // computed for it, and no item reads what another writes, so a step is bit-identical for any number of
-// workers (tests/test_workers.cpp checks it).
+// workers (tests/core/parallel/test_workers.cpp checks it).
 //
 // Helpers spin briefly between the many short loops of a step (Box2D v3 and Jolt do the same), then
 // sleep on the futex behind std::atomic::wait, so an idle world costs no processor time.

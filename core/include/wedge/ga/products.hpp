@@ -251,7 +251,7 @@ Rotor<N> to_even(const Bivector<N>& b) {
 //         + (s² - p² + b01² - b02² + b03² - b12² + b13² - b23²) x2 + 2 (s b23 + p b01 - b02 b03 - b12 b13) x3
 //   x'3 = 2 (b01 b13 + b02 b23 - s b03 - p b12) x0 + 2 (p b02 - s b13 - b01 b03 + b12 b23) x1
 //         - 2 (s b23 + p b01 + b02 b03 + b12 b13) x2 + (s² - p² + b01² + b02² - b03² + b12² - b13² - b23²) x3
-// (a unit rotor has s² + |B|² + p² = 1; tests/test_ga_products.cpp checks these against the kernel). The
+// (a unit rotor has s² + |B|² + p² = 1; tests/core/ga/test_products.cpp checks these against the kernel). The
 // code forms the two products term by term (blades.hpp): one kernel for every N.
 template <int N>
 Vec<N> rotate(const Rotor<N>& r, const Vec<N>& x) {

@@ -7,7 +7,7 @@
 // turns; the accelerometer, averaged over tau, removes the gyro's drift and ignores the hand's shaking.
 // Measured on a real hand-held iPhone trace (recordings/coremotion/kinetic_tremor_data.csv): 4.0 degrees
 // from CoreMotion's own fused gravity at the median with tau = 5 s, where the accelerometer alone, low-
-// passed at any tau, is 15 degrees off (tests/test_gravity_filter.cpp).
+// passed at any tau, is 15 degrees off (tests/input/test_gravity_filter.cpp).
 #pragma once
 
 #include <Eigen/Core>

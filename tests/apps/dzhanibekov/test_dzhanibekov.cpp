@@ -27,7 +27,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../apps/dzhanibekov/cases.hpp"
+#include "../../../apps/dzhanibekov/cases.hpp"
 
 namespace {
 

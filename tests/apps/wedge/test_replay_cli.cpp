@@ -113,7 +113,7 @@ TEST_CASE("wedge replay: shipped replays reproduce their recorded state hashes",
     const auto lines = res.lines();
     REQUIRE(!lines.empty());
     CHECK(lines.back()["state_hash"].get<std::string>() == r["state_hash"].get<std::string>());
-    // Two workers: the same bits (WorldSettings::workers; tests/test_workers.cpp splits large piles).
+    // Two workers: the same bits (WorldSettings::workers; tests/core/parallel/test_workers.cpp splits large piles).
     const Result two = dir.run("replay " + path(r["scene"].get<std::string>()) + recs +
                                " --every 1000000 --hash --workers 2");
     CHECK(two.out == res.out);
