@@ -10,6 +10,7 @@
 #include "wedge/ga/exp_log.hpp"
 #include "wedge/ga/frames.hpp"
 #include "wedge/dimensions.hpp"
+#include "wedge/softness.hpp"
 
 namespace wedge::input {
 
@@ -18,17 +19,6 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw Error("interaction settings: " + what);
 }
 bool positive(double x) { return x > 0.0 && std::isfinite(x); }
-
-// The implicit spring-damper coefficients of wedge/grab.hpp for one step: velocity change
-// dv = mass_scale (bias_rate * error - relative velocity).
-struct Soft {
-  double bias_rate, mass_scale;
-};
-Soft soft(double frequency, double damping_ratio, double h) {
-  const double omega = 2.0 * M_PI * frequency;
-  const double a1 = 2.0 * damping_ratio + h * omega, a2 = h * omega * a1;
-  return {omega / a1, a2 / (1.0 + a2)};
-}
 
 // The rotor of a rotation matrix (columns: the turned axes), by the paper's successive simple rotors.
 template <int N>
@@ -249,7 +239,7 @@ void Interaction<N>::release(int hand) {
 // bivector part B gives the plane and angle (theta = -2 B to second order; the shorter way round).
 template <int N>
 void Interaction<N>::drive_held(double h) {
-  const Soft turn = soft(settings_.turn_frequency, settings_.turn_damping_ratio, h);
+  const Softness turn = make_softness(settings_.turn_frequency, settings_.turn_damping_ratio, h);
   for (int k = 0; k < kHandCount; ++k) {
     HandState& hs = hands_[k];
     if (!hs.holding) continue;

@@ -3,13 +3,12 @@
 // keeps colliding while held: contacts are solved after the grab in every pass, so a held body is
 // stopped by static bodies and heavy piles instead of crushing them, and pushes light bodies aside.
 //
-// The spring is implicit (the "soft step" of Catto 2011, Box2D v3's b2MakeSoft): with w = 2 pi f,
-// a1 = 2 z + h w and a2 = h w a1 for frequency f, damping ratio z and step h, each pass applies
-//   j = -mass_scale K^-1 (v_point - v_target + bias_rate C) - impulse_scale j_accumulated,
-//   C = point - target, bias_rate = w / a1, mass_scale = a2 / (1 + a2), impulse_scale = 1 / (1 + a2),
+// The spring is implicit (wedge/softness.hpp, the coefficients of make_softness(frequency, damping_ratio,
+// h)); each pass applies
+//   j = -mass_scale K^-1 (v_point - v_target + bias_rate C) - impulse_scale j_accumulated,  C = point - target,
 // K being the body's effective mass matrix at the point. That is implicit Euler on a damped spring of
 // natural frequency f whatever the body's mass and inertia, so it is stable at any step and behaves
-// alike for a 10 g and a 100 kg body. Held still against gravity the point sags by g / w^2 (3.9 mm at the
+// alike for a 10 g and a 100 kg body. Held still against gravity the point sags by g / (2 pi f)^2 (3.9 mm at the
 // default 8 Hz). The accumulated impulse is clamped to mass * max_acceleration * h: a hand cannot lift
 // or push more than that, so piles and walls stop it.
 #pragma once

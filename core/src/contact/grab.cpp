@@ -5,6 +5,7 @@
 
 #include "contact/contact_system.hpp"
 #include "wedge/dimensions.hpp"
+#include "wedge/softness.hpp"
 
 namespace wedge::contact {
 
@@ -27,11 +28,10 @@ bool prepare_grabs(ContactState<N>& s, const std::vector<Body<N>>& bodies, doubl
     g.w = sb.inv_inertia * jr;
     const Mat<N> k = sb.inv_mass * Mat<N>::Identity() + jr.transpose() * g.w;
     g.mass = k.inverse();
-    const double omega = 2.0 * M_PI * g.def.frequency;
-    const double a1 = 2.0 * g.def.damping_ratio + h * omega, a2 = h * omega * a1;
-    g.mass_scale = a2 / (1.0 + a2);
-    g.impulse_scale = 1.0 / (1.0 + a2);
-    g.bias = (omega / a1) * (b.center + g.r - g.def.target);
+    const Softness soft = make_softness(g.def.frequency, g.def.damping_ratio, h);
+    g.mass_scale = soft.mass_scale;
+    g.impulse_scale = soft.impulse_scale;
+    g.bias = soft.bias_rate * (b.center + g.r - g.def.target);
     g.max_impulse = b.mass * g.def.max_acceleration * h;
     if (!all_finite(g.mass)) {  // (K is positive definite for a valid body; never let a NaN in)
       g.active = false;

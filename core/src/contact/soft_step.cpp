@@ -12,7 +12,7 @@
 // A point still apart (s > 0) may close by s in the sub-step and no more (speculative contact); a
 // penetrating one is pushed out by a soft constraint of frequency contact_hertz and damping ratio
 // contact_damping_ratio, never faster than contact_push_speed. The soft constraint is implicit Euler on
-// a damped spring, as in grabs (wedge/grab.hpp): mass_scale and impulse_scale blend the rigid answer
+// a damped spring (wedge/softness.hpp, as grabs use): mass_scale and impulse_scale blend the rigid answer
 // with the accumulated impulse so the push is the same for light and heavy bodies.
 //
 // Why this holds stacks: a sub-step of h/4 leaves a quarter of the velocity error for the same passes,
@@ -30,6 +30,7 @@
 #include "contact/lane_fill.hpp"
 #include "contact/lanes.hpp"
 #include "wedge/dimensions.hpp"
+#include "wedge/softness.hpp"
 
 namespace wedge::contact {
 
@@ -37,17 +38,6 @@ namespace {
 
 using lanes::WarmStart;
 using lanes::WidePass;
-
-// Implicit spring coefficients (as b2MakeSoft): bias rate 1/s, and the mass and impulse scales.
-struct Softness {
-  double bias_rate = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-};
-Softness make_soft(double hertz, double zeta, double h) {
-  if (hertz <= 0.0) return {0.0, 1.0, 0.0};
-  const double omega = 2.0 * M_PI * hertz;
-  const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
-  return {omega / a1, a2 * a3, a3};
-}
 
 // A kernel over s.wide[begin, end): in 4-lane packs on AVX-512 or AVX2 (lanes_x86.cpp) where the lanes
 // allow, else in 2-lane packs.
@@ -290,7 +280,7 @@ template <int N>
 void prepare_soft_contacts(ContactState<N>& s, const ContactSettings& settings, double h) {
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
-  const Softness soft = make_soft(std::min(settings.contact_hertz, 0.125 / h), settings.contact_damping_ratio, h);
+  const Softness soft = make_softness(std::min(settings.contact_hertz, 0.125 / h), settings.contact_damping_ratio, h);
   s.soft_bias_rate = soft.bias_rate;
   s.soft_mass_scale = soft.mass_scale;
   s.soft_impulse_scale = soft.impulse_scale;
