@@ -117,7 +117,7 @@ void BM_XrFrame(benchmark::State& state, const char* scene_name, const char* rec
   for (auto _ : state) {
     state.PauseTiming();  // the scene from the start
     World<4> world = scene.make_world(file);
-    input::Session<4> session(world, cli::session_settings(scene, h));
+    input::Session<4> session(world, scenes::session_settings(scene, h));
     session.set_step_function([&file](World<4>& w, double step) { cli::step_checking_finite(w, step, file); });
     std::optional<recordings::RecordingSource> source;
     if (recording) source.emplace(std::vector<recordings::Recording>{*recording}, std::vector<std::string>{rec_file});

@@ -54,7 +54,7 @@ void check_fit(const Scene<N>& scene, const recordings::RecordingSource& src, co
 template <int N>
 input::Session<N> make_session(const Scene<N>& scene, World<N>& world, double h, const std::string& scene_file) {
   input::Session<N> session =
-      with_file_context(scene_file, "interaction", [&] { return input::Session<N>(world, session_settings(scene, h)); });
+      with_file_context(scene_file, "interaction", [&] { return input::Session<N>(world, scenes::session_settings(scene, h)); });
   session.set_step_function([scene_file](World<N>& w, double step) { checked_step(w, step, scene_file); });
   return session;
 }

@@ -21,6 +21,7 @@
 #include "replay_input.hpp"
 #include "view_mouse.hpp"
 #include "wedge/recordings/recording.hpp"
+#include "wedge/scenes/interaction.hpp"
 #include "wedge/slicing/world_slices.hpp"
 
 namespace wedge::cli::viewer {
@@ -147,7 +148,7 @@ class ViewSession {
   // samples mean the same to `wedge replay`. Recording, each step's frame is kept: one sample per step,
   // at its time, so that replay reads it back exactly.
   std::unique_ptr<input::Session<N>> mouse_layer() {
-    input::SessionSettings<N> settings = session_settings(scene_, h_);
+    input::SessionSettings<N> settings = scenes::session_settings(scene_, h_);
     if (!recording())
       for (int a = 3; a < N; ++a) settings.interaction.tracking.origin[a] = slices_->flat().origin[a];
     auto session = std::make_unique<input::Session<N>>(world_, settings);

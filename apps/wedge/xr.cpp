@@ -29,6 +29,7 @@
 #include "step_options.hpp"
 #include "verbs.hpp"
 #include "wedge/recordings/recording.hpp"
+#include "wedge/scenes/interaction.hpp"
 #include "wedge/xr/check.hpp"
 #include "wedge/xr/clock.hpp"
 #include "wedge/xr/controllers.hpp"
@@ -235,7 +236,7 @@ class XrApp {
   void follow_slice() {
     if constexpr (N >= 4) {
       if (recorder_) return;
-      Vec<N> origin = interaction_settings(scene_).tracking.origin;
+      Vec<N> origin = scenes::interaction_settings(scene_).tracking.origin;
       const std::vector<double>& w = view_->offsets();
       for (std::size_t i = 0; i < w.size(); ++i) origin[N - 1 - int(i)] = w[i];
       session_->set_tracking_origin(origin);

@@ -20,6 +20,7 @@
 #include "view_overlays.hpp"
 #include "wedge/input/interaction.hpp"
 #include "wedge/render/renderer.hpp"
+#include "wedge/scenes/interaction.hpp"
 
 namespace wedge::cli {
 
@@ -28,7 +29,7 @@ class HeadsetView {
  public:
   HeadsetView(const Scene<N>& scene, const World<N>& world, const std::vector<double>& offsets, int subdivisions,
               const std::string& file)
-      : tracking_(interaction_settings(scene).tracking),
+      : tracking_(scenes::interaction_settings(scene).tracking),
         slices_(scene_slices<N>(world, offsets, subdivisions, file)),
         offsets_(offsets) {
     slices_.slice(world, meshes_);
