@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "cli_error.hpp"
 #include "interrupt.hpp"
@@ -10,6 +11,24 @@
 #include "wedge/scenes/error.hpp"
 
 namespace wedge::cli {
+
+namespace {
+// The message on one line, whatever it quotes: line breaks written as \n and \r. The libraries quote a
+// user's keys and fields through wedge::printable; this is the last guard before the terminal.
+std::string one_line(const std::string& message) {
+  std::string out;
+  for (const char c : message) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+}  // namespace
 
 std::optional<int> parse_verb_line(CLI::App& app, std::vector<std::string> args) {
   try {
@@ -22,7 +41,7 @@ std::optional<int> parse_verb_line(CLI::App& app, std::vector<std::string> args)
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "wedge: " << e.what() << "\nRun 'wedge --help' for usage.\n";
+    std::cerr << "wedge: " << one_line(e.what()) << "\nRun 'wedge --help' for usage.\n";
     return kExitBadInput;
   }
   return std::nullopt;
@@ -33,19 +52,19 @@ int run_verb(const std::function<int()>& verb) {
   try {
     return verb();
   } catch (const Interrupted& e) {
-    std::cerr << "wedge: " << e.what() << "\n";
+    std::cerr << "wedge: " << one_line(e.what()) << "\n";
     return 128 + e.signal();
   } catch (const Failure& e) {
-    std::cerr << "wedge: " << e.what() << "\n";
+    std::cerr << "wedge: " << one_line(e.what()) << "\n";
     return kExitBadInput;
   } catch (const scenes::SceneError& e) {
-    std::cerr << "wedge: " << e.what() << "\n";
+    std::cerr << "wedge: " << one_line(e.what()) << "\n";
     return kExitBadInput;
   } catch (const wedge::Error& e) {  // should have been caught with a file name; still bad input
-    std::cerr << "wedge: " << e.what() << "\n";
+    std::cerr << "wedge: " << one_line(e.what()) << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {  // InternalError, std::bad_alloc, ...
-    std::cerr << "wedge: internal error: " << e.what()
+    std::cerr << "wedge: internal error: " << one_line(e.what())
               << "\nThis is a bug in wedge: please report it with the command line and the input files.\n";
     return kExitInternal;
   }

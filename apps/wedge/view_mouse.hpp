@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli_error.hpp"
+#include "wedge/error.hpp"
 #include "wedge/render/camera.hpp"
 #include "wedge/slicing/pick.hpp"
 
@@ -49,7 +50,7 @@ void check_mouse_script(const MouseScript& script, const std::string& path, cons
       throw Failure(where + ": \"w\" has " + std::to_string(m.w->size()) + " offsets; a " + std::to_string(N) +
                     "D scene has " + std::to_string(std::max(N - 3, 0)));
     if (m.find && !body_named(*m.find))
-      throw Failure(where + ": \"find\": " + scene_file + " has no bounded body named '" + *m.find + "'");
+      throw Failure(where + ": \"find\": " + scene_file + " has no bounded body named '" + printable(*m.find) + "'");
   }
 }
 

@@ -19,8 +19,4 @@ struct CsvRecord {
 // quote left open at the end of the file) or a NUL byte (a binary file is not CSV).
 std::vector<CsvRecord> read_csv(const std::string& path);
 
-// A field or header name as an error message may quote it: on one line, control characters and other
-// bytes outside printable ASCII written as \n, \r, \t or \xNN, and cut after 40 characters with "...".
-std::string printable(const std::string& text);
-
 }  // namespace wedge::recordings

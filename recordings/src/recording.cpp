@@ -56,7 +56,7 @@ class LineReader {
   void only_keys(const Json& object, std::initializer_list<const char*> allowed, const std::string& where = "") const {
     for (const auto& item : object.items())
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* k) { return item.key() == k; }))
-        fail(where + "unknown key '" + item.key() + "'");
+        fail(where + "unknown key '" + printable(item.key()) + "'");
   }
   const Json& need(const Json& object, const char* key, const std::string& where = "") const {
     const auto it = object.find(key);
@@ -143,7 +143,7 @@ bool parse_line(const LineReader& at, std::string_view text, Json& out, std::str
     what = what.substr(what.find("] ") + 2);
     at.fail("a number is not finite (" + what + ")");
   }
-  if (!duplicate.empty()) at.fail("duplicate key '" + duplicate + "'");
+  if (!duplicate.empty()) at.fail("duplicate key '" + printable(duplicate) + "'");
   return true;
 }
 
@@ -172,7 +172,7 @@ void read_header(const LineReader& at, const Json& h, Recording& r) {
   const Json& conventions = at.need(h, "conventions");
   if (!conventions.is_object()) at.fail("'conventions' must be an object, got " + std::string(conventions.type_name()));
   for (const auto& item : conventions.items())
-    if (!item.value().is_string()) at.fail("conventions: '" + item.key() + "' must be a string");
+    if (!item.value().is_string()) at.fail("conventions: '" + printable(item.key()) + "' must be a string");
 }
 
 // One sample line into `r`; returns its time.
@@ -186,7 +186,7 @@ double read_sample(const LineReader& at, const Json& s, Recording& r) {
   } else if (type == "motion") {
     at.only_keys(s, {"t", "type", "acceleration", "rotation_rate", "tilt"});
   } else {
-    at.fail("unknown sample type '" + type + "' (expected hand, head or motion)");
+    at.fail("unknown sample type '" + printable(type) + "' (expected hand, head or motion)");
   }
   const double t = at.number(s, "t");
   if (t < 0.0) at.fail("'t' = " + num(t) + " is negative");

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "wedge/error.hpp"
 #include "wedge/fp_env.hpp"
 
 namespace wedge::scenes {
@@ -42,7 +43,7 @@ std::string format_number(double v) {
 }
 
 std::string child_path(const std::string& parent, const std::string& key) {
-  return parent.empty() ? key : parent + "." + key;
+  return parent.empty() ? printable(key) : parent + "." + printable(key);
 }
 
 std::string index_path(const std::string& parent, std::size_t index) {
@@ -64,7 +65,7 @@ class DuplicateKeyCheck {
         Frame& f = frames_.back();
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second)
-          throw JsonError(path(), "duplicate key '" + f.key + "' (each key may appear once in an object)");
+          throw JsonError(path(), "duplicate key '" + printable(f.key) + "' (each key may appear once in an object)");
         break;
       }
       case Json::parse_event_t::object_end:

@@ -736,3 +736,24 @@ TEST_CASE("wedge simulate: shipped scenes reproduce their recorded state hashes"
   CHECK(count == int(recorded.size()));
 }
 
+// A key or a name with a line break in it (JSON allows "a\nb") is named with the break escaped: the
+// refusal stays one line (found by fuzz_recording; tests/fuzz/corpus/README.md).
+TEST_CASE("wedge: a key with a line break is named on one line", "[cli]") {
+  TempDir dir;
+  dir.write("s.json", R"({"dim": 3, "bodies": [], "x\ny": 1})");
+  const Result scene = dir.run("simulate s.json --steps 1");
+  CHECK(scene.code == 2);
+  CHECK(scene.out.empty());
+  CHECK(std::count(scene.err.begin(), scene.err.end(), '\n') == 1);
+  CHECK(scene.err.find("s.json: x\\ny: unknown key") != std::string::npos);
+  // A shipped recording's header, then a sample whose key holds an escaped line break.
+  std::string header;
+  std::getline(std::ifstream(fs::path(WEDGE_SOURCE_DIR) / "recordings/scripted/toy_table_grab.jsonl") >> std::ws, header);
+  dir.write("r.jsonl", header + "\n{\"t\":0,\"type\":\"hand\",\"hand\":\"right\",\"position\":[0,0,0],\"ori\\ntation\":[1,0,0,0]}\n");
+  dir.write("t.json", R"({"dim": 4, "bodies": []})");
+  const Result replay = dir.run("replay t.json r.jsonl");
+  INFO(replay.err);
+  CHECK(replay.code == 2);
+  CHECK(std::count(replay.err.begin(), replay.err.end(), '\n') == 1);
+  CHECK(replay.err.find("r.jsonl:2: unknown key 'ori\\ntation'") != std::string::npos);
+}
