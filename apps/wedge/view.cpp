@@ -117,9 +117,9 @@ class Viewer {
   // ---- Platform and mouse -------------------------------------------------------------------------
 
   // This frame's mouse and keys (GLFW's, or the script's when there is one), carried out: the script's
-  // slice offsets, body to find and phone tilt; C toggles the contact marks, the arrow keys tilt the
-  // phone; the mouse moves the hand (when it drives the world) and, while the hand holds nothing, the
-  // camera: right drag orbits, middle drag pans, the wheel zooms.
+  // slice offsets, body to find, camera fit and phone tilt; C toggles the contact marks, F refits the
+  // camera, the arrow keys tilt the phone; the mouse moves the hand (when it drives the world) and, while
+  // the hand holds nothing, the camera: right drag orbits, middle drag pans, the wheel zooms.
   void poll_input(std::int64_t frame, slicing::Detail detail) {
     mouse_ = input_.read(window_.get(), frame);
     slice_request_ = false;  // the script moved a slider or asked for a body
@@ -134,6 +134,7 @@ class Viewer {
     }
     phone_.take(mouse_, N >= 4);
     if (input_.contacts_key(window_.get())) controls_.show_contacts = !controls_.show_contacts;
+    fit_request_ = mouse_.fit || input_.fit_key(window_.get());
     input_.tilt_keys(window_.get(), phone_);
     const double dx = input_.dx(mouse_), dy = input_.dy(mouse_);
     if (session_.mouse_driven()) move_hand(dx, dy, detail);
@@ -241,6 +242,10 @@ class Viewer {
       session_.reset();
       hand_ = MouseHand{};
     }
+    if (asked.fit || fit_request_) {  // (the camera frames the state drawn and the next kFitSeconds)
+      view_.fit(scene_, session_.world());
+      orbit_ = Orbit{view_.fitted().camera};
+    }
     if (controls_.playing) session_.owe((frames_ > 0 ? kFrameTime : elapsed) * controls_.time_scale);
     const int steps = session_.steps_owed(asked.single);
     for (int s = 0; s < steps; ++s) session_.step(hand_, phone_);
@@ -278,6 +283,7 @@ class Viewer {
   // This frame.
   MouseState mouse_;
   bool slice_request_ = false;  // the script moved a slider or asked for a body
+  bool fit_request_ = false;    // F or the script asked for the camera to be refitted
   std::string hovered_;         // the name of the body under the cursor
   int fb_width_ = 0, fb_height_ = 0;
   // The frame time split into physics, slicing and drawing.

@@ -38,6 +38,7 @@ MouseScript read_mouse_script(const std::string& path) {
       if (j.contains("w"))
         m.w = j.at("w").is_array() ? j.at("w").get<std::vector<double>>() : std::vector<double>{j.at("w").get<double>()};
       if (j.contains("find")) m.find = j.at("find").get<std::string>();
+      m.fit = j.value("fit", false);
       const std::int64_t frame = j.at("frame").get<std::int64_t>();
       if (!script.empty() && frame <= script.back().first) throw Failure("frames must increase");
       script.emplace_back(frame, m);
@@ -128,6 +129,7 @@ MouseState MouseInput::read(GLFWwindow* window, std::int64_t frame) {
     scripted_.wheel = 0;  // (a wheel step, a slider move and a find happen once)
     scripted_.w.reset();
     scripted_.find.reset();
+    scripted_.fit = false;
   } else if (!io.WantCaptureMouse) {
     glfwGetCursorPos(window, &mouse.x, &mouse.y);
     mouse.left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
@@ -142,12 +144,15 @@ MouseState MouseInput::read(GLFWwindow* window, std::int64_t frame) {
   return mouse;
 }
 
-bool MouseInput::contacts_key(GLFWwindow* window) {
-  const bool c_key = !scripted() && !ImGui::GetIO().WantCaptureKeyboard && glfwGetKey(window, GLFW_KEY_C) == GLFW_PRESS;
-  const bool went_down = c_key && !was_c_;
-  was_c_ = c_key;
+bool MouseInput::key_went_down(GLFWwindow* window, int key, bool& was) const {
+  const bool down = !scripted() && !ImGui::GetIO().WantCaptureKeyboard && glfwGetKey(window, key) == GLFW_PRESS;
+  const bool went_down = down && !was;
+  was = down;
   return went_down;
 }
+
+bool MouseInput::contacts_key(GLFWwindow* window) { return key_went_down(window, GLFW_KEY_C, was_c_); }
+bool MouseInput::fit_key(GLFWwindow* window) { return key_went_down(window, GLFW_KEY_F, was_f_); }
 
 void MouseInput::tilt_keys(GLFWwindow* window, Phone& phone) const {
   if (scripted() || ImGui::GetIO().WantCaptureKeyboard) return;

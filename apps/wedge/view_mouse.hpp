@@ -31,6 +31,7 @@ struct MouseState {
   std::optional<bool> tilt_w;
   std::optional<std::vector<double>> w;  // slice offsets, as the sliders set them (script field "w")
   std::optional<std::string> find;       // a body whose centre the slice moves to (script field "find")
+  bool fit = false;                      // refit the camera to what the scene does next (script field "fit")
 };
 
 // A --mouse script: (frame, the mouse from that frame on), frames increasing.
@@ -129,6 +130,8 @@ class MouseInput {
   MouseState read(GLFWwindow* window, std::int64_t frame);
   // The C key went down this frame (it toggles the contact marks).
   bool contacts_key(GLFWwindow* window);
+  // F went down this frame: refit the camera.
+  bool fit_key(GLFWwindow* window);
   // The arrow keys tilt the phone, a degree a frame.
   void tilt_keys(GLFWwindow* window, Phone& phone) const;
 
@@ -147,7 +150,8 @@ class MouseInput {
   std::size_t script_next_ = 0;  // the first script line not yet reached
   MouseState scripted_;          // the mouse as the lines reached so far leave it
   double last_x_ = 0, last_y_ = 0;
-  bool was_left_ = false, was_c_ = false;
+  bool was_left_ = false, was_c_ = false, was_f_ = false;
+  bool key_went_down(GLFWwindow* window, int key, bool& was) const;
 };
 
 }  // namespace wedge::cli::viewer

@@ -33,6 +33,7 @@ struct PanelRequests {
   bool single = false;         // one step, playing or not
   bool reset = false;          // back to the scene's start
   bool moved = false;          // the slice offsets changed
+  bool fit = false;            // refit the camera to what the scene does next
   std::optional<BodyId> find;  // a body clicked in the list (4D and up): move the slice through it
 };
 
@@ -46,7 +47,7 @@ inline void begin_panel(int fb_height) {
   ImGui::Begin("Wedge", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
 }
 
-// The scene and its clock: play or pause, one step, reset, the time scale.
+// The scene and its clock: play or pause, one step, reset, the camera refitted, the time scale.
 template <int N>
 void panel_clock(const std::string& file, const World<N>& world, Controls& controls, PanelRequests& asked) {
   ImGui::TextWrapped("%s (%dD)", file.c_str(), N);
@@ -56,6 +57,8 @@ void panel_clock(const std::string& file, const World<N>& world, Controls& contr
   asked.single = ImGui::Button("Step");
   ImGui::SameLine();
   asked.reset = ImGui::Button("Reset");
+  ImGui::SameLine();
+  asked.fit = ImGui::Button("Fit camera");
   ImGui::SliderFloat("time scale", &controls.time_scale, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
 }
 
@@ -99,7 +102,7 @@ inline void panel_frame_times(const FrameTimes& times, int subdivisions, bool pl
   ImGui::Text("drawing %.2f ms", 1e3 * times.drawing);
   ImGui::Text("round shapes: %d subdivisions%s", subdivisions, playing_level ? " (playing)" : "");
   ImGui::TextWrapped("Left drag on a body: grab and move it (wheel: depth; right drag: turn it, with Shift into "
-                     "w). Release throws. Right drag: orbit. Middle drag: pan. Wheel: zoom.");
+                     "w). Release throws. Right drag: orbit. Middle drag: pan. Wheel: zoom. F: refit the camera.");
 }
 
 // The phone: tilts gravity through the input layer, as an accelerometer would.

@@ -13,6 +13,7 @@ namespace wedge::cli::viewer {
 constexpr double kFrameTime = 1.0 / 60.0;  // s of simulated time per frame in --frames mode
 constexpr float kPanelWidth = 300.0f;      // px: the panel sits at the left edge, this wide
 constexpr int kViewLeft = 316;              // px: the 3D view starts right of the panel (and its margins)
+constexpr double kFitSeconds = 3.0;         // s: the camera frames what the scene does over this much time ahead
 
 // GLFW and a window with a current GL 3.3 core context, torn down in order. Without a display (neither
 // DISPLAY nor WAYLAND_DISPLAY set) it throws a Failure naming DISPLAY before GLFW is touched.

@@ -30,17 +30,17 @@ namespace wedge::cli::viewer {
 template <int N>
 class SliceView {
  public:
-  // The slice at offsets `w` (missing ones 0) of the world as it starts, the camera fitted to it in the
+  // The slice at offsets `w` (missing ones 0) of the world as it starts, the camera fitted (fit) in the
   // view beside the panel of a width x height window, and the sizes the sliders and markers take from it.
   // Round shapes are cut at two levels: `subdivisions` when still, `play_subdivisions` while the scene plays.
   SliceView(const Scene<N>& scene, const World<N>& world, const std::vector<double>& w, int subdivisions,
             int play_subdivisions, const std::string& file, int width, int height)
-      : offsets_(padded(w)), slices_(scene_slices<N>(world, offsets_, subdivisions, file, play_subdivisions)) {
+      : offsets_(padded(w)),
+        slices_(scene_slices<N>(world, offsets_, subdivisions, file, play_subdivisions)),
+        width_(width),
+        height_(height) {
     slices_.slice(world, meshes_);
-    std::vector<Eigen::Vector3d> corners;
-    add_box_corners(meshes_, corners);
-    // The camera is fitted to the view beside the panel, as `wedge render --size (W-316)xH` fits its picture.
-    fitted_ = fitted_frame(scene, world, slices_, corners, width - kViewLeft, height);
+    fit(scene, world);
     // The w sliders' range: every body's hidden coordinates, with room around them.
     for (int i = 0; i < world.body_count(); ++i)
       for (int a = 3; a < N; ++a)
@@ -53,6 +53,35 @@ class SliceView {
       std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
       return 0.05 * r[r.size() / 2];
     }();
+  }
+
+  // The camera fitted to what the world will do left alone: its cut now and every 0.1 s over the next
+  // kFitSeconds of a copy stepped without input, so that bodies thrown up or falling stay in the picture
+  // (as `wedge render` fits its camera to every frame it draws). The view is the window right of the panel.
+  void fit(const Scene<N>& scene, const World<N>& world) {
+    std::vector<Eigen::Vector3d> corners;
+    std::vector<slicing::DisplayMesh<3>> cut;
+    slices_.slice(world, cut);
+    add_box_corners(cut, corners);
+    World<N> ahead = world;
+    const double h = scene.timestep;
+    const int steps = int(std::lround(kFitSeconds / h)), every = std::max(1, int(std::lround(0.1 / h)));
+    for (int step = 1; step <= steps; ++step) {
+      ahead.step(h);
+      if (step % every != 0) continue;
+      slices_.slice(ahead, cut, slicing::Detail::Coarse);
+      const std::size_t before = corners.size();
+      add_box_corners(cut, corners);
+      // A world that blows up within the window (the session will stop it with its own message) does
+      // not move the camera to infinity.
+      if (!std::all_of(corners.begin() + std::ptrdiff_t(before), corners.end(), [](const Eigen::Vector3d& p) {
+            return p.allFinite() && p.norm() < 1e4;
+          })) {
+        corners.resize(before);
+        break;
+      }
+    }
+    fitted_ = fitted_frame(scene, world, slices_, corners, width_ - kViewLeft, height_);
   }
 
   const slicing::WorldSlices<N>& slices() const { return slices_; }
@@ -162,7 +191,8 @@ class SliceView {
   std::vector<double> offsets_;  // the slice offsets, N-3 of them
   slicing::WorldSlices<N> slices_;
   std::vector<slicing::DisplayMesh<3>> meshes_;  // the current cut, one per bounded body (entries() order)
-  render::FrameDesc fitted_;                     // ground, light and the camera fitted at the start
+  int width_, height_;                           // window px
+  render::FrameDesc fitted_;                     // ground, light and the camera (fit)
   double reach_ = 1.0;                           // m
   double mark_ = 0.05;                           // m: the half size of a contact point's cube
   int in_slice_ = 0;                             // bodies the current cut meets

@@ -427,3 +427,52 @@ TEST_CASE("wedge view: the w slider moved mid-session, or a body found by name, 
   CHECK(bad_w.code == 2);
   CHECK(bad_w.err.find("\"w\" has 2 offsets; a 4D scene has 1") != std::string::npos);
 }
+
+TEST_CASE("wedge view: the first camera frames what the scene does over its first seconds", "[cli][view]") {
+  TempDir dir;
+  // A red tesseract thrown straight up at 6 m/s from the ground: its top rises from 1 m to 2.83 m at
+  // t = 0.61 s (6^2 / 2g = 1.83 m higher), then it falls back and rests; the green one rests beside it.
+  dir.write("up.json", R"({"dim": 4, "gravity": [0, -9.81, 0, 0], "bodies": [
+    {"name": "ground", "static": true, "shape": {"type": "halfspace", "normal": [0, 1, 0, 0], "offset": 0}},
+    {"name": "r", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [-1, 0.5, 0, 0],
+     "velocity": [0, 6, 0, 0], "color": [1, 0, 0]},
+    {"name": "g", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [1, 0.5, 0, 0], "color": [0, 1, 0]}]})");
+  const Result start = under_xvfb(dir, "view up.json --frames 1 --screenshot f1.png --size 800x450");
+  const Result apex = under_xvfb(dir, "view up.json --frames 37 --screenshot f37.png --size 800x450");
+  INFO(start.err << apex.err);
+  REQUIRE(start.code == 0);
+  REQUIRE(apex.code == 0);
+  const Blob red1 = blob(dir.path() / "f1.png", 0), red37 = blob(dir.path() / "f37.png", 0);
+  const Blob green1 = blob(dir.path() / "f1.png", 1);
+  INFO("red at frame 1: rows " << red1.min_y << ".." << red1.max_y << "; at frame 37 (0.6 s): rows " << red37.min_y
+                               << ".." << red37.max_y);
+  // At its highest the thrown tesseract is still whole in the picture: below the top row by a margin
+  // (the fit leaves 5% of the half height), and about as large as at the start (same camera, a little
+  // farther away in perspective).
+  CHECK(red37.min_y > 5.0);
+  CHECK(red37.max_y < red1.min_y);  // it has risen by more than its own height
+  CHECK(red37.count > red1.count / 2);
+  CHECK(green1.count > 500);
+}
+
+TEST_CASE("wedge view: F (or a script's \"fit\") refits the camera to a body that drifted out of the picture",
+          "[cli][view]") {
+  TempDir dir;
+  // No gravity: the red tesseract drifts along x at 2 m/s. The first fit frames its first 3 s (to x = 6 m);
+  // by frame 420 (7 s) it is at x = 14 m, out of that picture.
+  dir.write("drift.json", R"({"dim": 4, "bodies": [
+    {"name": "r", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [0, 0, 0, 0],
+     "velocity": [2, 0, 0, 0], "color": [1, 0, 0]},
+    {"name": "g", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5, 0.5]}, "position": [0, -2, 0, 0], "color": [0, 1, 0]}]})");
+  dir.write("fit.jsonl", mouse_line(400, 0, 0, ",\"fit\":true"));
+  const Result lost = under_xvfb(dir, "view drift.json --frames 420 --screenshot lost.png --size 800x450");
+  const Result found = under_xvfb(dir, "view drift.json --mouse fit.jsonl --frames 420 --screenshot found.png --size 800x450");
+  INFO(lost.err << found.err);
+  REQUIRE(lost.code == 0);
+  REQUIRE(found.code == 0);
+  const Blob red_lost = blob(dir.path() / "lost.png", 0), red_found = blob(dir.path() / "found.png", 0);
+  const Blob green_found = blob(dir.path() / "found.png", 1);
+  CHECK(red_lost.count == 0);     // drifted out of the first fit
+  CHECK(red_found.count > 100);   // refitted at frame 400: in the picture again
+  CHECK(green_found.count > 100); // and the green one with it
+}
