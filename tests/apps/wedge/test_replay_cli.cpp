@@ -4,6 +4,7 @@
 // stated angle, the dominoes fall, the real Quest stream stays finite and bounded). Bad input exits 2
 // naming the file and the problem, with no output left behind.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <array>
 #include <map>
@@ -94,8 +95,104 @@ Replay replay(const TempDir& dir, const std::string& scene, const std::string& r
 
 }  // namespace
 
+// What each shipped replay must do, beside its hash: read from its events and its first and last states.
+namespace {
+
+double norm_of(const json& v) {
+  double s = 0.0;
+  for (const auto& x : v) s += x.get<double>() * x.get<double>();
+  return std::sqrt(s);
+}
+
+const json& body_in(const json& state, const std::string& name) {
+  for (const json& b : state["bodies"])
+    if (b["name"] == name) return b;
+  FAIL("no body " << name);
+  return state;
+}
+
+int count_events(const std::vector<json>& events, const std::string& type) {
+  return int(std::count_if(events.begin(), events.end(), [&](const json& e) { return e["type"] == type; }));
+}
+
+const std::vector<std::string> kToys = {"red", "blue", "cell24", "orange", "duocylinder"};
+
+void check_replay_behaviour(const std::string& name, const Replay& r) {
+  const json& first = r.states.front();
+  // (--hash: the file ends with the hash line, after the last state)
+  const json& last = r.states.back().contains("bodies") ? r.states.back() : r.states[r.states.size() - 2];
+  // At rest: under 1 cm/s (resting bodies print exact zeros once asleep).
+  auto at_rest = [&](const std::string& body) { return norm_of(body_in(last, body)["velocity"]) < 1e-2; };
+  auto height = [&](const json& state, const std::string& body) { return body_in(state, body)["center"][1].get<double>(); };
+  auto w_of = [&](const std::string& body) { return body_in(last, body)["center"][3].get<double>(); };
+  if (name == "toy_table_grab") {
+    // The hand takes the red tesseract, knocks the blue one off with it (a pulse) and throws it: both end
+    // at rest on the floor (centres at their 8 cm half size); the toys it never touched stay on the table.
+    CHECK(count_events(r.events, "grab") == 1);
+    CHECK(count_events(r.events, "release") == 1);
+    CHECK(count_events(r.events, "haptic") >= 1);
+    for (const char* body : {"red", "blue"}) {
+      INFO(body);
+      CHECK(height(last, body) < 0.1);
+      CHECK(at_rest(body));
+    }
+    for (const char* body : {"orange", "duocylinder"}) {
+      INFO(body);
+      CHECK(std::abs(height(last, body) - height(first, body)) < 5e-3);
+    }
+  } else if (name == "toy_table_tilt" || name == "toy_table_grab_and_tilt") {
+    // The phone tilts gravity toward +w (the scene's magnitude kept): every toy slides off the table
+    // that way, more than a metre into w (6 to 11 m at the end).
+    CHECK(last["gravity"][3].get<double>() > 1.0);
+    CHECK(std::abs(norm_of(last["gravity"]) - 9.81) < 1e-9);
+    for (const std::string& body : kToys) {
+      INFO(body);
+      CHECK(w_of(body) > 1.0);
+    }
+    CHECK(count_events(r.events, "grab") == (name == "toy_table_tilt" ? 0 : 1));
+  } else if (name == "dominoes_push") {
+    // A push of the first domino topples all twelve: each turned past 45 degrees (rotor scalar below
+    // cos 22.5 degrees), at rest.
+    CHECK(count_events(r.events, "grab") == 1);
+    CHECK(count_events(r.events, "haptic") >= 1);
+    for (int i = 0; i < 12; ++i) {
+      const std::string body = "domino" + std::to_string(i);
+      INFO(body);
+      CHECK(std::abs(body_in(last, body)["rotor"][0].get<double>()) < std::cos(22.5 * M_PI / 180.0));
+      CHECK(at_rest(body));
+    }
+  } else if (name == "quest2_toy_table") {
+    // The real Quest 2 session: one grab and release of a toy, gentle (nothing faster than 1 m/s);
+    // every toy stays on the table within 1 cm of its height and the energy within 0.1%.
+    CHECK(count_events(r.events, "grab") == 1);
+    CHECK(count_events(r.events, "release") == 1);
+    for (const std::string& body : kToys) {
+      INFO(body);
+      CHECK(std::abs(height(last, body) - height(first, body)) < 1e-2);
+    }
+    CHECK(std::abs(last["energy"].get<double>() / first["energy"].get<double>() - 1.0) < 1e-3);
+  } else if (name == "coremotion_toy_table") {
+    // A real phone held in the hand for a tremor test: gravity follows it, at the scene's magnitude,
+    // mostly along +z (the phone is held flat: its accelerometer reads +1 g on z); no hand, so no
+    // events; every toy slides off the table onto the floor and on along it (about 390 m in 9.4 s on
+    // the endless floor).
+    CHECK(r.events.empty());
+    CHECK(std::abs(norm_of(last["gravity"]) - 9.81) < 1e-9);
+    for (const std::string& body : kToys) {
+      INFO(body);
+      CHECK(height(last, body) < 0.15);
+      CHECK(norm_of(body_in(last, body)["center"]) > 10.0);
+    }
+  } else {
+    FAIL("shipped replay " << name << " has no behavioural check beside its hash: add one here");
+  }
+}
+
+}  // namespace
+
 // Every shipped recording is in at least one replay of recordings/hashes.json (written by
-// tools/update_replay_hashes.sh after an intentional change); every replay reproduces its hash.
+// tools/update_replay_hashes.sh after an intentional change); every replay reproduces its hash, gives
+// the same states with two workers, and does what it must (check_replay_behaviour).
 TEST_CASE("wedge replay: shipped replays reproduce their recorded state hashes", "[cli][replay][determinism]") {
   const json recorded = json::parse(read_file(kRoot / "recordings" / "hashes.json"));
   std::set<std::string> covered;
@@ -108,15 +205,19 @@ TEST_CASE("wedge replay: shipped replays reproduce their recorded state hashes",
       covered.insert(f.get<std::string>());
     }
     TempDir dir;
-    const Result res = dir.run("replay " + path(r["scene"].get<std::string>()) + recs + " --every 1000000 --hash");
-    REQUIRE(res.code == 0);
-    const auto lines = res.lines();
-    REQUIRE(!lines.empty());
-    CHECK(lines.back()["state_hash"].get<std::string>() == r["state_hash"].get<std::string>());
-    // Two workers: the same bits (WorldSettings::workers; tests/core/parallel/test_workers.cpp splits large piles).
-    const Result two = dir.run("replay " + path(r["scene"].get<std::string>()) + recs +
-                               " --every 1000000 --hash --workers 2");
-    CHECK(two.out == res.out);
+    const Replay run = replay(dir, r["scene"].get<std::string>(), recs, "--hash");
+    REQUIRE(run.result.code == 0);
+    REQUIRE(run.states.size() >= 2);
+    CHECK(run.result.out.find("state hash " + r["state_hash"].get<std::string>()) != std::string::npos);
+    check_replay_behaviour(name, run);
+    // Two workers: the same bits in every state (WorldSettings::workers; tests/core/parallel/test_workers.cpp
+    // splits large piles).
+    const std::string one = read_file(dir.path() / "states.jsonl");
+    const Result two =
+        dir.run("replay " + path(r["scene"].get<std::string>()) + recs + " --out states2.jsonl --hash --workers 2");
+    REQUIRE(two.code == 0);
+    const bool same_states = read_file(dir.path() / "states2.jsonl") == one;
+    CHECK(same_states);
   }
   for (const auto& e : fs::recursive_directory_iterator(kRoot / "recordings")) {
     if (e.path().extension() != ".jsonl") continue;
