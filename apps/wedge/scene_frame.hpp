@@ -52,15 +52,18 @@ inline double fit_distance(const std::vector<Eigen::Vector3d>& points, const Eig
   return d;
 }
 
+// The eight corners of a non-empty mesh's bounding box, appended to `points`.
+inline void add_box_corners(const slicing::DisplayMesh<3>& m, std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (const Eigen::Vector3d& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  for (int c = 0; c < 8; ++c)
+    points.emplace_back((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
+}
+
 // The eight corners of each non-empty mesh's bounding box, appended to `points`.
 inline void add_box_corners(const std::vector<slicing::DisplayMesh<3>>& meshes, std::vector<Eigen::Vector3d>& points) {
-  for (const slicing::DisplayMesh<3>& m : meshes) {
-    if (m.empty()) continue;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-    for (const Eigen::Vector3d& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-    for (int c = 0; c < 8; ++c)
-      points.emplace_back((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
-  }
+  for (const slicing::DisplayMesh<3>& m : meshes)
+    if (!m.empty()) add_box_corners(m, points);
 }
 
 // The frame's ground and camera (no meshes yet) for a picture of width x height pixels.
