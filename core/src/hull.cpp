@@ -1,6 +1,5 @@
 #include "wedge/hull.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "linalg/decompositions.hpp"
+#include "linalg/fixed_size.hpp"
 #include "wedge/error.hpp"
 
 // Qhull's C headers last: they define many macros.
@@ -192,7 +192,7 @@ ConvexHull<N> convex_hull(const std::vector<Vec<N>>& points) {
         cell[std::size_t(j)] = hull.vertex_of_point[std::size_t(c[std::size_t(j)])];
         m.col(j) = points[std::size_t(c[std::size_t(j)])] - inside;
       }
-      if (m.determinant() < 0.0) std::swap(cell[0], cell[1]);
+      if (linalg::determinant<N>(m) < 0.0) std::swap(cell[0], cell[1]);
       hull.mesh.cells.push_back(cell);
     }
   }

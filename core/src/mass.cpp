@@ -1,6 +1,5 @@
 #include "wedge/mass.hpp"
 
-#include <Eigen/LU>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -10,6 +9,7 @@
 #include <variant>
 
 #include "linalg/decompositions.hpp"
+#include "linalg/fixed_size.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
 
@@ -74,7 +74,7 @@ MassProperties<N> mesh_mass_properties(const SimplexMesh<N>& mesh, double densit
   for (const auto& c : mesh.cells) {
     Mat<N> m;
     for (int j = 0; j < N; ++j) m.col(j) = mesh.vertices[std::size_t(c[j])] - p;
-    const double d = m.determinant();
+    const double d = linalg::determinant<N>(m);
     Vec<N> s = Vec<N>::Zero();
     for (int j = 0; j < N; ++j) s += m.col(j);
     det_sum.add(d);
@@ -251,7 +251,7 @@ PrincipalFrame<N> principal_frame(const MassProperties<N>& props) {
         if (std::abs(q(i, j)) > std::abs(q(big, j))) big = i;
       if (q(big, j) < 0.0) q.col(j) = -q.col(j);
     }
-    if (q.determinant() < 0.0) q.col(N - 1) = -q.col(N - 1);
+    if (linalg::determinant<N>(q) < 0.0) q.col(N - 1) = -q.col(N - 1);
     out.axes = q;
   }
   const Mat<N> cq = out.axes.transpose() * c * out.axes;

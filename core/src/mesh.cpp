@@ -1,11 +1,11 @@
 #include "wedge/mesh.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "linalg/fixed_size.hpp"
 #include "wedge/error.hpp"
 
 namespace wedge {
@@ -58,7 +58,7 @@ double signed_volume_about(const SimplexMesh<N>& mesh, const Vec<N>& p) {
   for (const auto& c : mesh.cells) {
     Mat<N> m;
     for (int j = 0; j < N; ++j) m.col(j) = mesh.vertices[std::size_t(c[j])] - p;
-    const double d = m.determinant(), t = sum + d;
+    const double d = linalg::determinant<N>(m), t = sum + d;
     comp += std::abs(sum) >= std::abs(d) ? (sum - t) + d : (d - t) + sum;
     sum = t;
   }

@@ -1,13 +1,13 @@
 // World step, body construction and diagnostics; explicitly instantiated for N = 2..6.
 #include "wedge/world.hpp"
 
-#include <Eigen/LU>
 #include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "contact/contact_system.hpp"
 #include "linalg/decompositions.hpp"
+#include "linalg/fixed_size.hpp"
 #include "linalg/isotropic.hpp"
 #include "wedge/error.hpp"
 #include "wedge/fp_env.hpp"
@@ -65,7 +65,7 @@ Body<N> make_body(const BodyDef<N>& def) {
   b.inertia = 0.5 * (def.inertia + def.inertia.transpose());
   {
     const ExpectedFpExceptions quiet;  // an inverse too large for a double is refused just below
-    b.inv_inertia = b.inertia.inverse();
+    b.inv_inertia = linalg::inverse<kBiv<N>>(b.inertia);
   }
   if (!all_finite(b.inv_inertia)) throw Error(who + ": inertia is too small to invert (its inverse overflows)");
   b.inv_inertia = 0.5 * (b.inv_inertia + b.inv_inertia.transpose()).eval();
@@ -83,7 +83,7 @@ Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, doub
     const Bivector<N> im = Bivector<N>::from(inertia * m.c);
     const Bivector<N> g = Bivector<N>::from(inertia * (w2 - w).c) - commutator(m, im) * h;
     const BivMat<N> jac = inertia - (t * h) * (commutator_matrix(m) * inertia - commutator_matrix(im));
-    w2 -= Bivector<N>::from(jac.partialPivLu().solve(g.c));
+    w2 -= Bivector<N>::from(linalg::solve<kBiv<N>>(jac, g.c));
   }
   if (!euler) {
     const double e0 = w.c.dot(inertia * w.c), e1 = w2.c.dot(inertia * w2.c);

@@ -2,12 +2,12 @@
 // (support functions, support sets, face clipping, manifold reduction).
 #pragma once
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
+#include "linalg/fixed_size.hpp"
 #include "wedge/collision/manifold.hpp"
 #include "wedge/collision/narrow_phase.hpp"
 #include "wedge/shape.hpp"
@@ -122,7 +122,7 @@ Vec<N> orthogonal_complement(const Eigen::Matrix<double, N, N - 1>& m, double to
     Eigen::Matrix<double, N - 1, N - 1> minor;
     for (int r = 0, k = 0; r < N; ++r)
       if (r != i) minor.row(k++) = m.row(r);
-    n[i] = (i % 2 ? -1.0 : 1.0) * minor.determinant();
+    n[i] = (i % 2 ? -1.0 : 1.0) * linalg::determinant<N - 1>(minor);
   }
   double lengths = 1.0;
   for (int c = 0; c < N - 1; ++c) lengths *= m.col(c).norm();

@@ -19,7 +19,7 @@
 #include <type_traits>
 #include <vector>
 
-#include <Eigen/LU>  // set_effective_masses: inverse()
+#include "linalg/fixed_size.hpp"  // set_effective_masses: the tangent mass
 
 #include "wedge/body.hpp"
 #include "wedge/collision/aabb.hpp"
@@ -215,7 +215,7 @@ inline void set_effective_masses(P& p, const Mat<N>& k, const Vec<N>& n) {
   p.kn = k * n;
   p.normal_mass = 1.0 / n.dot(p.kn);
   const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
-  p.tangent_mass = (proj * k * proj + n * n.transpose()).inverse();
+  p.tangent_mass = linalg::inverse<N>(Mat<N>(proj * k * proj + n * n.transpose()));
   if (!(std::isfinite(p.normal_mass) && p.normal_mass >= 0.0) || !all_finite(p.tangent_mass)) {
     p.normal_mass = 0.0;
     p.tangent_mass.setZero();

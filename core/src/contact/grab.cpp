@@ -1,9 +1,9 @@
 // Grabs as soft point constraints, solved in process_contacts before the contacts of every pass (see
 // wedge/grab.hpp for the spring and its coefficients).
-#include <Eigen/LU>
 #include <cmath>
 
 #include "contact/contact_system.hpp"
+#include "linalg/fixed_size.hpp"
 #include "wedge/dimensions.hpp"
 #include "wedge/softness.hpp"
 
@@ -27,7 +27,7 @@ bool prepare_grabs(ContactState<N>& s, const std::vector<Body<N>>& bodies, doubl
     const WedgeMat<N> jr = wedge_matrix<N>(g.r);
     g.w = sb.inv_inertia * jr;
     const Mat<N> k = sb.inv_mass * Mat<N>::Identity() + jr.transpose() * g.w;
-    g.mass = k.inverse();
+    g.mass = linalg::inverse<N>(k);
     const Softness soft = make_softness(g.def.frequency, g.def.damping_ratio, h);
     g.mass_scale = soft.mass_scale;
     g.impulse_scale = soft.impulse_scale;
