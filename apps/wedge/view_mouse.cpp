@@ -5,8 +5,10 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <fstream>
+#include <limits>
 
 #include "scenes.hpp"
 #include "wedge/fp_env.hpp"
@@ -39,7 +41,12 @@ MouseScript read_mouse_script(const std::string& path) {
         m.w = j.at("w").is_array() ? j.at("w").get<std::vector<double>>() : std::vector<double>{j.at("w").get<double>()};
       if (j.contains("find")) m.find = j.at("find").get<std::string>();
       m.fit = j.value("fit", false);
-      const std::int64_t frame = j.at("frame").get<std::int64_t>();
+      // (a whole number: JSON's 5.5e68 or 1.5 is not a frame, and converting it would be undefined)
+      const Json& f = j.at("frame");
+      if (!f.is_number_integer() ||
+          (f.is_number_unsigned() && f.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<std::int64_t>::max())))
+        throw Failure("\"frame\" must be a whole number of frames, got " + f.dump());
+      const std::int64_t frame = f.get<std::int64_t>();
       if (!script.empty() && frame <= script.back().first) throw Failure("frames must increase");
       script.emplace_back(frame, m);
     } catch (const std::exception& e) {

@@ -426,6 +426,15 @@ TEST_CASE("wedge view: the w slider moved mid-session, or a body found by name, 
   const Result bad_w = under_xvfb(dir, "view s.json --mouse bad_w.jsonl --frames 5");
   CHECK(bad_w.code == 2);
   CHECK(bad_w.err.find("\"w\" has 2 offsets; a 4D scene has 1") != std::string::npos);
+  // A frame that is not a whole number (found by fuzz_mouse_script: 5.5e68 converted to an integer was
+  // undefined behaviour) is refused with its line.
+  for (const char* frame : {"5.5e68", "1.5", "18446744073709551615"}) {
+    INFO(frame);
+    dir.write("bad_frame.jsonl", std::string("{\"frame\":1,\"x\":0,\"y\":0}\n{\"frame\":") + frame + ",\"x\":0,\"y\":0}\n");
+    const Result bad_frame = under_xvfb(dir, "view s.json --mouse bad_frame.jsonl --frames 5");
+    CHECK(bad_frame.code == 2);
+    CHECK(bad_frame.err.find("bad_frame.jsonl:2: \"frame\" must be a whole number of frames") != std::string::npos);
+  }
 }
 
 TEST_CASE("wedge view: the first camera frames what the scene does over its first seconds", "[cli][view]") {
