@@ -142,9 +142,19 @@ ConvexHull<N> convex_hull(const std::vector<Vec<N>>& points) {
   if (n < N + 1)
     throw Error("convex hull in " + std::to_string(N) + "D needs at least " + std::to_string(N + 1) +
                 " points (got " + std::to_string(n) + ")");
-  for (int i = 0; i < n; ++i)
+  // Qhull's determinants multiply N coordinates: beyond 1e30 m (10^180 in 6D) they overflow, and Qhull
+  // then reads facets it never made (a crash, found by fuzzing a 24-cell of circumradius 2e235 m).
+  constexpr double kMaxCoordinate = 1e30;
+  for (int i = 0; i < n; ++i) {
     if (!all_finite(points[std::size_t(i)]))
       throw Error("convex hull: point " + std::to_string(i) + " has a non-finite coordinate");
+    if (!(points[std::size_t(i)].cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      std::ostringstream s;
+      s << "convex hull: point " << i << " has a coordinate of " << points[std::size_t(i)].cwiseAbs().maxCoeff()
+        << " m; at most 1e+30 m is supported";
+      throw Error(s.str());
+    }
+  }
 
   // The points must span R^N: singular values of the centred point matrix, relative to the largest.
   Vec<N> mean = Vec<N>::Zero();

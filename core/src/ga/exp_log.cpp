@@ -13,7 +13,9 @@ BivectorDecomposition<N> decompose_generator(Mat<N> w) {
   for (int p = 0; p < N / 2; ++p) {
     linalg::SmallVector values;
     linalg::SmallMatrix vectors;
-    linalg::symmetric_eigen(w.transpose() * w, values, vectors);
+    // (an eigensolver that does not converge, for a generator too large to be a turn, ends the
+    // decomposition instead of reading vectors it did not write)
+    if (!linalg::symmetric_eigen(w.transpose() * w, values, vectors)) break;
     const Vec<N> u = vectors.col(N - 1);
     const Vec<N> wu = w * u;
     const double angle = wu.norm();
@@ -55,7 +57,7 @@ Bivector<N> log_by_decomposition(const Rotor<N>& r) {
     const Mat<N> sym = 0.5 * (m + m.transpose());
     linalg::SmallVector values;
     linalg::SmallMatrix vectors;
-    linalg::symmetric_eigen(Mat<N>::Identity() - sym, values, vectors);
+    if (!linalg::symmetric_eigen(Mat<N>::Identity() - sym, values, vectors)) break;
     if (values[N - 1] < 0.5) break;
     const Vec<N> u = vectors.col(N - 1);
     Vec<N> v = m * u - u.dot(m * u) * u;
