@@ -151,7 +151,7 @@ ConvexHull<N> convex_hull(const std::vector<Vec<N>>& points) {
     if (!(points[std::size_t(i)].cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
       std::ostringstream s;
       s << "convex hull: point " << i << " has a coordinate of " << points[std::size_t(i)].cwiseAbs().maxCoeff()
-        << " m; at most 1e+30 m is supported";
+        << " m; at most " << kMaxCoordinate << " m is supported";
       throw Error(s.str());
     }
   }
