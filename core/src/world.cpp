@@ -517,7 +517,15 @@ template <int N>
 void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
   const bool repair_now = last_of_step && (steps_ + 1) % settings_.rotor_repair_interval == 0;
   const bool track = soft && !contact_->constraints.empty();
-  // (flatten: exp, to_matrix and the rotation's product are inlined into the sweep.)
+  // Runs advance(i) for every body, split over the workers. Up to 4D everything advance calls (exp,
+  // to_matrix, the rotor products, the repair) is inlined into the sweep (flatten); in 5D and 6D, whose
+  // rotor products are 16 and 32 terms squared, the compiler's own inlining decides.
+  auto sweep_bodies = [&](auto&& advance) {
+    if constexpr (N <= 4)
+      contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) __attribute__((flatten)) { advance(i); });
+    else
+      contact::for_each_body(*contact_, int(bodies_.size()), advance);
+  };
   if (soft) {
     // The soft step's sub-steps: the velocities are the solver bodies', there is no split impulse (vp
     // and wp are zero), and which bodies move is the solver body's flag, read with its velocities
@@ -525,7 +533,7 @@ void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
     // The solve pass's finish, body by body, joins this sweep (contact::finish_pass).
     const bool finish = contact_->solve_finish_pending;
     contact_->solve_finish_pending = false;
-    contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) __attribute__((flatten)) {
+    sweep_bodies([&](int i) {
       contact::SolverBody<N>& sb = contact_->solver_bodies[i];
       if (finish) contact::finish_body_pass(sb);
       if (!sb.advances) return;
@@ -537,7 +545,7 @@ void World<N>::integrate_positions(double h, bool last_of_step, bool soft) {
     });
     return;
   }
-  contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) __attribute__((flatten)) {
+  sweep_bodies([&](int i) {
     Body<N>& b = bodies_[i];
     if (b.type == BodyType::Static || !contact_->awake[i]) return;
     contact::SolverBody<N>& sb = contact_->solver_bodies[i];
