@@ -12,6 +12,7 @@
 #include "linalg/decompositions.hpp"
 #include "linalg/fixed_size.hpp"
 #include "wedge/error.hpp"
+#include "wedge/dimensions.hpp"
 
 // Qhull's C headers last: they define many macros.
 #include <libqhull_r/qhull_ra.h>
@@ -222,11 +223,7 @@ SimplexMesh<N> convex_hull_mesh(const std::vector<Vec<N>>& points) {
 #define WEDGE_INSTANTIATE_HULL(N)                                               \
   template ConvexHull<N> convex_hull<N>(const std::vector<Vec<N>>&);            \
   template SimplexMesh<N> convex_hull_mesh<N>(const std::vector<Vec<N>>&);
-WEDGE_INSTANTIATE_HULL(2)
-WEDGE_INSTANTIATE_HULL(3)
-WEDGE_INSTANTIATE_HULL(4)
-WEDGE_INSTANTIATE_HULL(5)
-WEDGE_INSTANTIATE_HULL(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE_HULL)
 #undef WEDGE_INSTANTIATE_HULL
 
 }  // namespace wedge

@@ -12,6 +12,7 @@
 #include "linalg/fixed_size.hpp"
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge {
 namespace {
@@ -280,11 +281,7 @@ PrincipalFrame<N> principal_frame(const MassProperties<N>& props) {
   template MassProperties<N> with_mass<N>(const MassProperties<N>&, double);                            \
   template BivMat<N> inertia_about<N>(const MassProperties<N>&, const Vec<N>&);                         \
   template PrincipalFrame<N> principal_frame<N>(const MassProperties<N>&);
-WEDGE_INSTANTIATE_MASS(2)
-WEDGE_INSTANTIATE_MASS(3)
-WEDGE_INSTANTIATE_MASS(4)
-WEDGE_INSTANTIATE_MASS(5)
-WEDGE_INSTANTIATE_MASS(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE_MASS)
 #undef WEDGE_INSTANTIATE_MASS
 
 }  // namespace wedge

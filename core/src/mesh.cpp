@@ -7,6 +7,7 @@
 
 #include "linalg/fixed_size.hpp"
 #include "wedge/error.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge {
 namespace {
@@ -353,11 +354,7 @@ SimplexMesh<N> ball_mesh(double radius, int subdivisions) {
   template SimplexMesh<N> box_mesh<N>(const Vec<N>&, int);                                   \
   template SimplexMesh<N> round_product_mesh<N>(const std::vector<ProductFactor>&, int);     \
   template SimplexMesh<N> ball_mesh<N>(double, int);
-WEDGE_INSTANTIATE_MESH(2)
-WEDGE_INSTANTIATE_MESH(3)
-WEDGE_INSTANTIATE_MESH(4)
-WEDGE_INSTANTIATE_MESH(5)
-WEDGE_INSTANTIATE_MESH(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE_MESH)
 #undef WEDGE_INSTANTIATE_MESH
 
 }  // namespace wedge

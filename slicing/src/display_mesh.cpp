@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "wedge/error.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge::slicing {
 
@@ -112,11 +113,7 @@ DisplayMesh<N> display_mesh(const Shape<N>& shape, int subdivisions) {
   template Vec<N> cell_normal<N>(const std::array<Vec<N>, N>&);                \
   template DisplayMesh<N> display_mesh<N>(const Shape<N>&, int);               \
   template DisplayMesh<N> flat_display_mesh<N>(const SimplexMesh<N>&);
-WEDGE_INSTANTIATE_DISPLAY_MESH(2)
-WEDGE_INSTANTIATE_DISPLAY_MESH(3)
-WEDGE_INSTANTIATE_DISPLAY_MESH(4)
-WEDGE_INSTANTIATE_DISPLAY_MESH(5)
-WEDGE_INSTANTIATE_DISPLAY_MESH(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE_DISPLAY_MESH)
 #undef WEDGE_INSTANTIATE_DISPLAY_MESH
 
 }  // namespace wedge::slicing

@@ -6,6 +6,7 @@
 
 #include "wedge/error.hpp"
 #include "wedge/ga/products.hpp"
+#include "wedge/dimensions.hpp"
 
 namespace wedge {
 
@@ -62,11 +63,7 @@ Aabb<N> world_aabb(const Shape<N>& shape, const Vec<N>& position, const Rotor<N>
   template Aabb<N> points_aabb<N>(const std::vector<Vec<N>>&, const Vec<N>&, const Mat<N>&);             \
   template Aabb<N> world_aabb<N>(const Shape<N>&, const Vec<N>&, const Mat<N>&);                         \
   template Aabb<N> world_aabb<N>(const Shape<N>&, const Vec<N>&, const Rotor<N>&);
-WEDGE_INSTANTIATE_AABB(2)
-WEDGE_INSTANTIATE_AABB(3)
-WEDGE_INSTANTIATE_AABB(4)
-WEDGE_INSTANTIATE_AABB(5)
-WEDGE_INSTANTIATE_AABB(6)
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE_AABB)
 #undef WEDGE_INSTANTIATE_AABB
 
 }  // namespace wedge
