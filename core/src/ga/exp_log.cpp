@@ -11,12 +11,24 @@ BivectorDecomposition<N> decompose_generator(Mat<N> w) {
   BivectorDecomposition<N> out;
   const double scale = w.norm();
   for (int p = 0; p < N / 2; ++p) {
-    linalg::SmallVector values;
-    linalg::SmallMatrix vectors;
-    // (an eigensolver that does not converge, for a generator too large to be a turn, ends the
-    // decomposition instead of reading vectors it did not write)
-    if (!linalg::symmetric_eigen(w.transpose() * w, values, vectors)) break;
-    const Vec<N> u = vectors.col(N - 1);
+    Vec<N> u;
+    if (p == N / 2 - 1) {
+      // What is left acts on the N - 2p <= 3 dimensions not yet peeled, where every bivector is simple:
+      // W = t (v u^T - u v^T), whose every column lies in the plane. The largest one, made unit, is a u
+      // as good as the eigenvector (any unit u in the plane gives |W u| = t), without an eigensolver.
+      int j = 0;
+      w.colwise().squaredNorm().maxCoeff(&j);
+      const double len = w.col(j).norm();
+      if (!(len > 0.0)) break;
+      u = w.col(j) / len;
+    } else {
+      linalg::SmallVector values;
+      linalg::SmallMatrix vectors;
+      // (an eigensolver that does not converge, for a generator too large to be a turn, ends the
+      // decomposition instead of reading vectors it did not write)
+      if (!linalg::symmetric_eigen(w.transpose() * w, values, vectors)) break;
+      u = vectors.col(N - 1);
+    }
     const Vec<N> wu = w * u;
     const double angle = wu.norm();
     if (!(angle > 4e-16 * scale)) break;  // the rest is round-off
