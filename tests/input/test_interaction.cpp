@@ -17,7 +17,7 @@ using namespace wedge::input;
 namespace {
 
 constexpr double kH = 1.0 / 120.0;
-constexpr int kRight = 1, kLeft = 0;
+constexpr int kRight = 1;  // the hand these tests use (0 is the left)
 
 template <int N>
 Vec<N> at(double x, double y) {

@@ -34,9 +34,9 @@ TEST_CASE("pick: rays against the slice of a tesseract and of a 4-ball", "[slici
   int box_hits = 0, ball_hits = 0;
   const double r = std::sqrt(0.5 * 0.5 - 0.2 * 0.2);  // the ball's slice at w = 0, 0.2 from its centre
   for (int trial = 0; trial < 400; ++trial) {
-    const Eigen::Vector3d origin(4.0 * u(rng), 2.0 + u(rng), 5.0);
-    const Eigen::Vector3d target = trial % 2 ? Eigen::Vector3d(-1.0 + 0.5 * u(rng), 0.4 * u(rng), 0.3 * u(rng))
-                                             : Eigen::Vector3d(1.0 + 0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng));
+    const Eigen::Vector3d origin{4.0 * u(rng), 2.0 + u(rng), 5.0};  // (braces: drawn left to right)
+    const Eigen::Vector3d target = trial % 2 ? Eigen::Vector3d{-1.0 + 0.5 * u(rng), 0.4 * u(rng), 0.3 * u(rng)}
+                                             : Eigen::Vector3d{1.0 + 0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng)};
     const Eigen::Vector3d d = (target - origin).normalized();
     const auto hit = slicing::pick(meshes, origin, d);
     // Truth: the cube (slab method) and the sphere (closed form).

@@ -48,12 +48,20 @@ Vec<N> random_unit(std::mt19937_64& rng) {
   return v.normalized();
 }
 
+// A plane with a random normal, drawn first, at the offset offset() draws: two draws in a fixed order
+// (the arguments of one call are evaluated in an order each compiler picks).
+template <int N, class Draw>
+Hyperplane<N> random_plane(std::mt19937_64& rng, Draw&& offset) {
+  const Vec<N> normal = random_unit<N>(rng);
+  return Hyperplane<N>::through(normal, offset());
+}
+
 template <int N>
 SliceChain<N> random_chain(std::mt19937_64& rng, double spread) {
   SliceChain<N> c;
   if constexpr (N > 3) {
     std::uniform_real_distribution<double> u(-spread, spread);
-    c.plane = Hyperplane<N>::through(random_unit<N>(rng), u(rng));
+    c.plane = random_plane<N>(rng, [&] { return u(rng); });
     c.rest = random_chain<N - 1>(rng, spread);
   }
   return c;
@@ -107,9 +115,9 @@ TEST_CASE("Slicer: rotated, shifted boxes in 4D match the exact cross-section vo
   MeshSlicer<4> slicer(mesh);
   int nonempty = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    Placement<4> pl{random_rotation<4>(rng), Vec<4>(u(rng), u(rng), u(rng), 0.4 * u(rng))};
+    Placement<4> pl{random_rotation<4>(rng), Vec<4>{u(rng), u(rng), u(rng), 0.4 * u(rng)}};
     const Hyperplane<4> plane = trial % 2 ? Hyperplane<4>::axis(0.3 * u(rng))
-                                          : Hyperplane<4>::through(random_unit<4>(rng), 0.3 * u(rng));
+                                          : random_plane<4>(rng, [&] { return 0.3 * u(rng); });
     const DisplayMesh<3> cut = slicer.slice(pl, plane);
     SliceChain<4> chain;
     chain.plane = plane;
@@ -218,7 +226,7 @@ TEST_CASE("Slicer: closed and outward for thousands of random orientations and o
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Vec<4>> points;
-  for (int i = 0; i < 40; ++i) points.push_back(Vec<4>(u(rng), u(rng), u(rng), u(rng)) * 0.6);
+  for (int i = 0; i < 40; ++i) points.push_back(Vec<4>{u(rng), u(rng), u(rng), u(rng)} * 0.6);
   const std::vector<Shape<4>> shapes = {Shape<4>::box(Vec<4>(0.5, 0.2, 0.6, 0.4)), Shape<4>::ball(0.6),
                                         Shape<4>::duocylinder(0.5, 0.3), Shape<4>::spherinder(0.4, 0.3),
                                         Shape<4>::polytope(points)};
@@ -226,8 +234,8 @@ TEST_CASE("Slicer: closed and outward for thousands of random orientations and o
   for (const Shape<4>& shape : shapes) {
     MeshSlicer<4> slicer(display_mesh(shape, 3));
     for (int trial = 0; trial < 600; ++trial) {
-      Placement<4> pl{random_rotation<4>(rng), Vec<4>(u(rng), u(rng), u(rng), 0.5 * u(rng))};
-      const Hyperplane<4> plane = Hyperplane<4>::through(random_unit<4>(rng), 0.5 * u(rng));
+      Placement<4> pl{random_rotation<4>(rng), Vec<4>{u(rng), u(rng), u(rng), 0.5 * u(rng)}};
+      const Hyperplane<4> plane = random_plane<4>(rng, [&] { return 0.5 * u(rng); });
       const DisplayMesh<3> cut = slicer.slice(pl, plane);
       ++slices;
       INFO("shape " << &shape - shapes.data() << ", trial " << trial);
@@ -253,8 +261,8 @@ TEST_CASE("Slicer: every straddling cell gives its pieces, skipped runs of cells
     const DisplayMesh<4> mesh = display_mesh(shape, 8);
     MeshSlicer<4> slicer(mesh);
     for (int trial = 0; trial < 200; ++trial) {
-      const Placement<4> pl{random_rotation<4>(rng), Vec<4>(u(rng), u(rng), u(rng), 0.3 * u(rng))};
-      Hyperplane<4> plane = Hyperplane<4>::through(random_unit<4>(rng), 0.7 * u(rng));
+      const Placement<4> pl{random_rotation<4>(rng), Vec<4>{u(rng), u(rng), u(rng), 0.3 * u(rng)}};
+      Hyperplane<4> plane = random_plane<4>(rng, [&] { return 0.7 * u(rng); });
       if (trial % 10 == 0)  // through a vertex
         plane.offset = plane.normal.dot(pl.rotation * mesh.vertices[std::size_t(trial) % mesh.vertices.size()] +
                                         pl.translation);

@@ -69,7 +69,10 @@ template <int N>
 PointsSupport<N> random_polytope(std::mt19937_64& rng, int n, const Vec<N>& centre, double radius) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   PointsSupport<N> s;
-  for (int i = 0; i < n; ++i) s.points.push_back(centre + radius * std::pow(u(rng), 1.0 / N) * unit<N>(rng));
+  for (int i = 0; i < n; ++i) {
+    const double r = radius * std::pow(u(rng), 1.0 / N);  // (two draws: one per statement, so that every
+    s.points.push_back(centre + r * unit<N>(rng));        // compiler draws them in the same order)
+  }
   return s;
 }
 

@@ -80,7 +80,8 @@ TEMPLATE_TEST_CASE("epa: random overlapping polytopes against the depth of the M
   const int trials = N <= 4 ? 50 : 20;
   int used = 0;
   for (int t = 0; t < trials; ++t) {
-    const Vec<N> cb = 0.8 * u(rng) * oracle::unit<N>(rng);
+    const double distance = 0.8 * u(rng);  // (one draw per statement: same order in every compiler)
+    const Vec<N> cb = distance * oracle::unit<N>(rng);
     const auto a = oracle::random_polytope<N>(rng, N + 2 + t % 6, Vec<N>::Zero(), 1.0);
     const auto b = oracle::random_polytope<N>(rng, N + 2 + (t / 6) % 5, cb, 0.4 + u(rng));
     used += check_depth<N>(a, b, a.points, b.points, Vec<N>(cb));
@@ -98,7 +99,8 @@ TEMPLATE_TEST_CASE("epa: overlapping rotated boxes against the depth of the Mink
   int used = 0;
   for (int t = 0; t < trials; ++t) {
     const BoxSupport<N> a = oracle::random_box<N>(rng, Vec<N>(0.3 * oracle::gaussian<N>(rng)));
-    const BoxSupport<N> b = oracle::random_box<N>(rng, Vec<N>(a.centre + 0.6 * u(rng) * oracle::unit<N>(rng)));
+    const double distance = 0.6 * u(rng);  // (one draw per statement)
+    const BoxSupport<N> b = oracle::random_box<N>(rng, Vec<N>(a.centre + distance * oracle::unit<N>(rng)));
     const double depth = N == 6 ? oracle::box_sat<N>(a, b) : NAN;
     used += check_depth<N>(a, b, a.corners(), b.corners(), Vec<N>(b.centre - a.centre), depth);
   }
@@ -171,7 +173,10 @@ TEMPLATE_TEST_CASE("epa: a ball overlapping a box, against the closest-point for
     // on odd ones.
     Vec<N> local;
     for (int i = 0; i < N; ++i) local[i] = (2.0 * u(rng) - 1.0) * box.half[i];
-    if (t % 2) local += (0.05 + 0.8 * u(rng)) * ball.radius * oracle::unit<N>(rng).cwiseAbs().cwiseProduct(local.cwiseSign());
+    if (t % 2) {
+      const double depth = (0.05 + 0.8 * u(rng)) * ball.radius;  // (one draw per statement)
+      local += depth * oracle::unit<N>(rng).cwiseAbs().cwiseProduct(local.cwiseSign());
+    }
     const Vec<N> clamped = local.cwiseMax(-box.half).cwiseMin(box.half);
     double truth;
     Vec<N> normal_local;

@@ -286,7 +286,7 @@ TEST_CASE("Feature ids persist while the same features touch, and tell the point
     for (int t = 0; t < 20; ++t) {
       Bivector<4> b;
       b[1] = 3 * jitter(rng), b[2] = 3 * jitter(rng), b[5] = 3 * jitter(rng);
-      const Manifold<4> m = contact(Vec<4>(jitter(rng), 0.0, jitter(rng), jitter(rng)), exp(b));
+      const Manifold<4> m = contact(Vec<4>{jitter(rng), 0.0, jitter(rng), jitter(rng)}, exp(b));
       REQUIRE(m.count == 8);
       std::vector<std::uint64_t> now;
       for (int i = 0; i < m.count; ++i) now.push_back(m.points[i].id);

@@ -107,8 +107,8 @@ TEST_CASE("repair keeps a rotation confined to a subspace exactly inside it", "[
   std::uniform_real_distribution<double> angle(-M_PI, M_PI);
   constexpr auto even = ga::Blades<4>::order<ga::Set::Even>();
   for (int t = 0; t < 500; ++t) {
-    const Bivector<4> b = Bivector<4>::basis(0, 1) * angle(rng) + Bivector<4>::basis(0, 2) * angle(rng) +
-                          Bivector<4>::basis(1, 2) * angle(rng);
+    const double a01 = angle(rng), a02 = angle(rng), a12 = angle(rng);  // (drawn in this order by every compiler)
+    const Bivector<4> b = Bivector<4>::basis(0, 1) * a01 + Bivector<4>::basis(0, 2) * a02 + Bivector<4>::basis(1, 2) * a12;
     Rotor<4> noisy = exp(b);
     for (int i = 0; i < 8; ++i)
       if (!(even[i] & 8u)) noisy[i] *= 1.0 + 1e-9 * (i + 1);  // drift inside the subspace only

@@ -35,7 +35,10 @@ void check_maps(const Mat<N>& from, const Mat<N>& to) {
 TEMPLATE_TEST_CASE("rotor_between_frames maps random frames onto each other", "[ga][frames]", D2, D3, D4, D5, D6) {
   constexpr int N = TestType::value;
   std::mt19937_64 rng(900 + N);
-  for (int trial = 0; trial < 300; ++trial) check_maps<N>(oracle::rotation<N>(rng), oracle::rotation<N>(rng));
+  for (int trial = 0; trial < 300; ++trial) {
+    const Mat<N> a = oracle::rotation<N>(rng), b = oracle::rotation<N>(rng);  // (in this order in every compiler)
+    check_maps<N>(a, b);
+  }
   // The same frame: the identity (not -1, which is the same rotation but a full turn of the body).
   const Mat<N> a = oracle::rotation<N>(rng);
   CHECK((rotor_between_frames<N>(a, a) - Rotor<N>::identity()).norm() <= kTol);
