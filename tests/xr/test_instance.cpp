@@ -13,30 +13,18 @@
 #include <fstream>
 #include <sstream>
 
+#include "loader_abi.hpp"
 #include "xr_test_support.hpp"
 
 using namespace xrtest;
 
 namespace {
 
-// The loader's negotiation structs (OpenXR loader spec, "Runtime Interface Negotiation"), declared here as
-// the spec lays them out.
-struct LoaderInfo {
-  int structType;  // 1: XR_LOADER_INTERFACE_STRUCT_LOADER_INFO
-  uint32_t structVersion;
-  size_t structSize;
-  uint32_t minInterfaceVersion, maxInterfaceVersion;
-  XrVersion minApiVersion, maxApiVersion;
-};
-struct RuntimeRequest {
-  int structType;  // 3: XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST
-  uint32_t structVersion;
-  size_t structSize;
-  uint32_t runtimeInterfaceVersion;
-  XrVersion runtimeApiVersion;
-  PFN_xrGetInstanceProcAddr getInstanceProcAddr;
-};
-using Negotiate = XrResult (*)(const LoaderInfo*, RuntimeRequest*);
+// The negotiation structs as the runtime declares them (xr/runtime/src/loader_abi.hpp, laid out as the loader's):
+// the function is called through its own type, so UBSan's function-type check holds.
+using LoaderInfo = XrNegotiateLoaderInfo;
+using RuntimeRequest = XrNegotiateRuntimeRequest;
+using Negotiate = XrResult (*)(const XrNegotiateLoaderInfo*, XrNegotiateRuntimeRequest*);
 
 // The runtime library next to the manifest (the manifest's library_path is "./libwedge_xr_replay.so").
 void* runtime_library() {
@@ -51,8 +39,9 @@ void* runtime_library() {
 PFN_xrGetInstanceProcAddr negotiated_gipa() {
   auto negotiate = reinterpret_cast<Negotiate>(dlsym(runtime_library(), "xrNegotiateLoaderRuntimeInterface"));
   REQUIRE(negotiate != nullptr);
-  LoaderInfo info{1, 1, sizeof(LoaderInfo), 1, 1, XR_MAKE_VERSION(1, 0, 0), XR_MAKE_VERSION(1, 0, 0xfff)};
-  RuntimeRequest request{3, 1, sizeof(RuntimeRequest), 0, 0, nullptr};
+  LoaderInfo info{XR_LOADER_INTERFACE_STRUCT_LOADER_INFO, 1, sizeof(LoaderInfo), 1, 1, XR_MAKE_VERSION(1, 0, 0),
+                  XR_MAKE_VERSION(1, 0, 0xfff)};
+  RuntimeRequest request{XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST, 1, sizeof(RuntimeRequest), 0, 0, nullptr};
   REQUIRE(negotiate(&info, &request) == XR_SUCCESS);
   CHECK(request.runtimeInterfaceVersion == 1);
   CHECK(XR_VERSION_MAJOR(request.runtimeApiVersion) == 1);
@@ -179,10 +168,11 @@ TEST_CASE("xr runtime: an app may also enable the loader's own XR_EXT_debug_util
 TEST_CASE("xr runtime: negotiation refuses what is not the loader's ABI") {
   auto negotiate = reinterpret_cast<Negotiate>(dlsym(runtime_library(), "xrNegotiateLoaderRuntimeInterface"));
   REQUIRE(negotiate != nullptr);
-  LoaderInfo info{1, 1, sizeof(LoaderInfo), 1, 1, XR_MAKE_VERSION(1, 0, 0), XR_MAKE_VERSION(1, 0, 0xfff)};
-  RuntimeRequest request{3, 1, sizeof(RuntimeRequest), 0, 0, nullptr};
+  LoaderInfo info{XR_LOADER_INTERFACE_STRUCT_LOADER_INFO, 1, sizeof(LoaderInfo), 1, 1, XR_MAKE_VERSION(1, 0, 0),
+                  XR_MAKE_VERSION(1, 0, 0xfff)};
+  RuntimeRequest request{XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST, 1, sizeof(RuntimeRequest), 0, 0, nullptr};
   LoaderInfo wrong_type = info;
-  wrong_type.structType = 3;
+  wrong_type.structType = XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST;
   CHECK(negotiate(&wrong_type, &request) == XR_ERROR_INITIALIZATION_FAILED);
   LoaderInfo wrong_size = info;
   wrong_size.structSize = 16;
