@@ -2,6 +2,9 @@
 //   BM_WorldStep<N>       one World<N>::step of 1000 free tumbling boxes with gravity, per body (default
 //                         settings: implicit midpoint gyroscopic step, rotor repair every step)
 //   BM_WorldStepEuler<N>  the same with the paper's implicit Euler gyroscopic step (one Newton step)
+//   BM_Exp<N>             exp of a sub-step's turn (components in [-0.01, 0.01]): the closed forms up to 5D, one
+//                         eigenvector and the two-plane closed form in 6D (exp_log.hpp)
+//   BM_ExpByDecomposition<N>  the same by the eigenvector decomposition of every plane
 //   BM_*Compose<N>        Rotor * Rotor vs Eigen N x N matrix product (vs quaternion product in 3D)
 //   BM_*Apply<N>          rotor sandwich R x ~R vs matrix-vector product M x with M precomputed
 //   BM_RotorToMatrixApply to_matrix(R) then M x, i.e. rotating one vector starting from a stored rotor
@@ -102,6 +105,29 @@ void BM_WorldStep(benchmark::State& state) {
 template <int N>
 void BM_WorldStepEuler(benchmark::State& state) {
   world_step<N>(state, true);
+}
+
+// ------------------------------------------------------------------ exp
+template <int N, bool kDecomposition>
+void exp_of_turns(benchmark::State& state) {
+  std::mt19937_64 rng(77 + N);
+  std::vector<Bivector<N>> b;
+  for (int i = 0; i < kOps; ++i) b.push_back(random_bivector<N>(rng, 0.01));
+  std::vector<Rotor<N>> out(kOps);
+  for (auto _ : state) {
+    for (int i = 0; i < kOps; ++i) out[i] = kDecomposition ? exp_by_decomposition(b[i]) : exp(b[i]);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  set_per_item(state, kOps, "time_per_op");
+}
+template <int N>
+void BM_Exp(benchmark::State& state) {
+  exp_of_turns<N, false>(state);
+}
+template <int N>
+void BM_ExpByDecomposition(benchmark::State& state) {
+  exp_of_turns<N, true>(state);
 }
 
 // ------------------------------------------------------------------ rotor vs matrix
@@ -221,6 +247,12 @@ BENCHMARK_TEMPLATE(BM_WorldStep, 5);
 BENCHMARK_TEMPLATE(BM_WorldStep, 6);
 BENCHMARK_TEMPLATE(BM_WorldStepEuler, 3);
 BENCHMARK_TEMPLATE(BM_WorldStepEuler, 4);
+BENCHMARK_TEMPLATE(BM_Exp, 4);
+BENCHMARK_TEMPLATE(BM_Exp, 5);
+BENCHMARK_TEMPLATE(BM_Exp, 6);
+BENCHMARK_TEMPLATE(BM_ExpByDecomposition, 4);
+BENCHMARK_TEMPLATE(BM_ExpByDecomposition, 5);
+BENCHMARK_TEMPLATE(BM_ExpByDecomposition, 6);
 
 BENCHMARK_TEMPLATE(BM_RotorCompose, 3);
 BENCHMARK_TEMPLATE(BM_MatrixCompose, 3);

@@ -3,7 +3,8 @@
 // A general bivector is a sum of commuting simple bivectors in orthogonal planes (the invariant
 // decomposition), B = sum_i t_i u_i^v_i, so exp(B) = prod_i (cos t_i + sin t_i u_i^v_i); in 4D that is a
 // double rotation. 2D and 3D bivectors are always simple; 4D has a closed form through the self-dual /
-// anti-self-dual split; 5D and 6D find the planes from the eigenvectors of the generator.
+// anti-self-dual split; 5D bivectors have at most two planes, whose exp has a closed form in the invariants
+// |B|^2 and |B^B|^2 (exp_two_planes); 6D peels its largest plane with one eigenvector first.
 // Convention: R = exp(B) rotates u toward v by -2t in each plane, so dR/dt = -1/2 w R gives R = exp(-w t/2).
 #pragma once
 
@@ -81,9 +82,33 @@ inline Bivector<4> dual4(const Bivector<4>& b) {
 template <int N>
 BivectorDecomposition<N> decompose_generator(Mat<N> w);
 
-// exp of a general bivector by the invariant decomposition (any N; the path used for N >= 5).
+// exp of a general bivector by the invariant decomposition: every plane from an eigenvector (any N; a
+// second, independent way to the same rotor, which the tests compare with exp).
 template <int N>
 Rotor<N> exp_by_decomposition(const Bivector<N>& b);
+
+// exp of a bivector that is the sum of at most two commuting orthogonal planes, B = B1 + B2 with
+// B_i = t_i u_i^v_i (every 4D and 5D bivector), from its invariants, without an eigensolver:
+//   exp(B) = (c1 + sinc(t1) B1)(c2 + sinc(t2) B2) = c1 c2 + f1 B1 + f2 B2 + sinc(t1) sinc(t2) W
+// with c_i = cos t_i, f1 = sinc(t1) c2, f2 = sinc(t2) c1 and W = B1 B2 = <B B>_4 / 2. The squared
+// angles x_i = t_i^2 are the roots of x^2 - e1 x + e2, where e1 = |B|^2 = x1 + x2 and e2 = |W|^2 = x1 x2.
+// The planes themselves are never formed: f1 B1 + f2 B2 = a B + b P with P = x2 B1 + x1 B2 = -<W B>_2,
+// where a + b x2 = f1 and a + b x1 = f2, so
+//   b = (f1 - f2) / (x2 - x1) = (sinc(t1 + t2) - sinc(t1 - t2)) / (2 t1 t2),   a = (f1 + f2 - b e1) / 2.
+// Both are symmetric in t1, t2 and neither divides by x1 - x2, so they stay accurate where the two angles
+// meet (isoclinic: the split is not unique there, and x1 - x2 is known only to sqrt(eps) |B|^2). The sums
+// run on the unit bivector B / |B|, with the angles scaled back, so no invariant overflows. For large B
+// the a B and b P terms are each about |B| and cancel: the rotor is exact to about eps |B|. A bivector
+// with a third plane (6D) gives that plane only to first order: exp_by_invariants peels it first.
+template <int N>
+Rotor<N> exp_two_planes(const Bivector<N>& b);
+
+// exp for N >= 5 and |B| <= 1 (every sub-step's turn of a body below 960 rad/s): exp_two_planes in 5D; in
+// 6D the largest plane B1 = t u^v (u the top eigenvector of W^T W, v = W u / t) is peeled first,
+// exp(B) = (cos t + sin t u^v) exp_two_planes(B - B1). Larger B go to exp_by_decomposition: the closed
+// form's terms grow like |B| and cancel, so its rotor is exact only to eps |B| there.
+template <int N>
+Rotor<N> exp_by_invariants(const Bivector<N>& b);
 
 // log of a rotor from the rotation planes of its matrix M (any N; the path used for N >= 5), such that
 // exp(log R) = R including the sign of R (a full turn is R = -1). Planes turned by more than 60 degrees
@@ -117,7 +142,7 @@ Rotor<N> exp(const Bivector<N>& b) {
     r[7] = 0.5 * (cp - cq);
     return r;
   } else {
-    return exp_by_decomposition(b);
+    return exp_by_invariants(b);
   }
 }
 
