@@ -72,18 +72,38 @@ Body<N> make_body(const BodyDef<N>& def) {
   return b;
 }
 
+namespace {
+// J = I - s ([m]x I - [I m]x), term by term from the commutator's table (out[o] += sign a[i] b[j]):
+// ([m]x I)(o, :) = sum of sign m[i] I(j, :) over the terms of row o, and [I m]x has sign (I m)[i] at
+// (o, j). About 2 (N - 2) terms per row instead of a dense k x k x k product.
+template <int N>
+BivMat<N> gyroscopic_jacobian(const BivMat<N>& inertia, const Bivector<N>& m, const Bivector<N>& im, double s) {
+  BivMat<N> jac = inertia;
+  for (const ga::Term& t : ga::Terms<N, ga::Set::Bivector, ga::Set::Bivector, ga::Set::Bivector,
+                                     ga::Product::Commutator>::table) {
+    const double f = s * t.sign;
+    jac.row(t.out) -= (f * m[t.a]) * inertia.row(t.b);
+    jac(t.out, t.b) += f * im[t.a];
+  }
+  return jac;
+}
+}  // namespace
+
 template <int N>
 Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
   const bool euler = method == GyroscopicMethod::ImplicitEuler;
   const double t = euler ? 1.0 : 0.5;
   const int iterations = euler ? 1 : 2;
+  // Both iterations use the Jacobian at the first iterate w' = w (simplified Newton): it changes by
+  // O(h |w|^2) over the step, so the second iteration still converges, at a cost of one factorisation.
+  const Bivector<N> iw = Bivector<N>::from(inertia * w.c);
+  const linalg::LuFactors<kBiv<N>> jac(gyroscopic_jacobian<N>(inertia, w, iw, t * h));
   Bivector<N> w2 = w;
   for (int i = 0; i < iterations; ++i) {
     const Bivector<N> m = euler ? w2 : (w + w2) * 0.5;
-    const Bivector<N> im = Bivector<N>::from(inertia * m.c);
+    const Bivector<N> im = i == 0 ? iw : Bivector<N>::from(inertia * m.c);
     const Bivector<N> g = Bivector<N>::from(inertia * (w2 - w).c) - commutator(m, im) * h;
-    const BivMat<N> jac = inertia - (t * h) * (commutator_matrix(m) * inertia - commutator_matrix(im));
-    w2 -= Bivector<N>::from(linalg::solve<kBiv<N>>(jac, g.c));
+    w2 -= Bivector<N>::from(jac.solve(g.c));
   }
   if (!euler) {
     const double e0 = w.c.dot(inertia * w.c), e1 = w2.c.dot(inertia * w2.c);

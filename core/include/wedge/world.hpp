@@ -212,7 +212,8 @@ class World {
 // One implicit step of the torque-free Euler equation I dw/dt - w x I w = 0 in the body frame, solved
 // by Newton's method from w (Catto 2015, generalised with the bivector commutator [a]x b = a x b).
 // With m = (1-t) w + t w' (t = 1: implicit Euler, t = 1/2: implicit midpoint) each iteration solves
-//   g(w') = I (w' - w) - h m x I m = 0,   J = I - t h ([m]x I - [I m]x),   w' <- w' - J^-1 g(w').
+//   g(w') = I (w' - w) - h m x I m = 0,   J = I - t h ([m]x I - [I m]x),   w' <- w' - J^-1 g(w'),
+// with J taken at w' = w and factorised once (implicit Euler: one iteration; midpoint: two).
 // The midpoint result never gains energy: if unconverged iterations raised w'.I w', it is scaled back.
 template <int N>
 Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w_body, double h,

@@ -48,12 +48,26 @@ inline Column<R> solve(const Square<R>& a, const Column<R>& b) {
   return solve_lu<R>(a, b);
 }
 
+// A partial-pivoting LU factorisation of a, kept for several right-hand sides (Eigen's PartialPivLU; the
+// sizes of WEDGE_LINALG_FIXED_SOLVE).
+template <int R>
+class LuFactors {
+ public:
+  explicit LuFactors(const Square<R>& a);
+  Column<R> solve(const Column<R>& b) const;
+
+ private:
+  Eigen::PartialPivLU<Square<R>> lu_;
+};
+
 #define WEDGE_LINALG_FIXED_LARGE(X) X(5) X(6) X(10) X(15)
 #define WEDGE_LINALG_FIXED_SOLVE(X) X(1) X(3) X(5) X(6) X(10) X(15)
 #define WEDGE_LINALG_DECLARE_LARGE(R)                            \
   extern template Square<R> inverse_lu<R>(const Square<R>&); \
   extern template double determinant_lu<R>(const Square<R>&);
-#define WEDGE_LINALG_DECLARE_SOLVE(R) extern template Column<R> solve_lu<R>(const Square<R>&, const Column<R>&);
+#define WEDGE_LINALG_DECLARE_SOLVE(R)                                            \
+  extern template Column<R> solve_lu<R>(const Square<R>&, const Column<R>&); \
+  extern template class LuFactors<R>;
 WEDGE_LINALG_FIXED_LARGE(WEDGE_LINALG_DECLARE_LARGE)
 WEDGE_LINALG_FIXED_SOLVE(WEDGE_LINALG_DECLARE_SOLVE)
 #undef WEDGE_LINALG_DECLARE_LARGE
