@@ -101,12 +101,14 @@ Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, doub
   Bivector<N> w2 = w;
   for (int i = 0; i < iterations; ++i) {
     const Bivector<N> m = euler ? w2 : (w + w2) * 0.5;
-    const Bivector<N> im = i == 0 ? iw : Bivector<N>::from(inertia * m.c);
-    const Bivector<N> g = Bivector<N>::from(inertia * (w2 - w).c) - commutator(m, im) * h;
+    // (at the first iterate w' = w, so I (w' - w) = 0 and I m = I w)
+    const Bivector<N> g = i == 0 ? commutator(w, iw) * -h
+                                 : Bivector<N>::from(inertia * (w2 - w).c) -
+                                       commutator(m, Bivector<N>::from(inertia * m.c)) * h;
     w2 -= Bivector<N>::from(jac.solve(g.c));
   }
   if (!euler) {
-    const double e0 = w.c.dot(inertia * w.c), e1 = w2.c.dot(inertia * w2.c);
+    const double e0 = w.c.dot(iw.c), e1 = w2.c.dot(inertia * w2.c);
     if (e1 > e0) w2 *= std::sqrt(e0 / e1);
   }
   return w2;

@@ -5,10 +5,14 @@
 
 namespace wedge::linalg {
 
-// m is m(0, 0) times the identity, to the last bit.
+// m is m(0, 0) times the identity, to the last bit (an anisotropic inertia usually fails at (1, 1)).
 template <class M>
 bool is_isotropic(const M& m) {
-  return m == M(m(0, 0) * M::Identity());
+  const double d = m(0, 0);
+  for (int j = 0; j < m.cols(); ++j)
+    for (int i = 0; i < m.rows(); ++i)
+      if (m(i, j) != (i == j ? d : 0.0)) return false;
+  return true;
 }
 
 }  // namespace wedge::linalg
