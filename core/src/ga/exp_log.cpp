@@ -90,8 +90,8 @@ Rotor<N> exp_two_planes(const Bivector<N>& b) {
   const double t1 = n * tau1, t2 = n * tau2;
   const double c1 = cos_near_zero(t1), c2 = cos_near_zero(t2);
   const double s1 = n * sinc(t1), s2 = n * sinc(t2);  // sin(t_i) / tau_i
-  // a^ = |B| a and b^ = |B|^3 b of the formula above, for B^ and P^ = P / |B|^3. b enters a multiplied by
-  // e1, so it must be accurate to eps in both regimes: near equal angles (x2 >= 1/4) as the sinc
+  // a^ = |B| a and b^ = |B|^3 b of the formula in exp_log.hpp, for B^ and P^ = P / |B|^3. b enters a
+  // multiplied by e1, so it must be accurate to eps in both regimes: near equal angles (x2 >= 1/4) as the sinc
   // difference over 2 t1 t2, whose denominator is then near x1; where the second plane is smaller
   // (t2 < t1 / sqrt 3, down to none) as its definition (f1 - f2) / (x2 - x1), whose denominator is then
   // at least x1 / 2 while the sinc difference would cancel.
