@@ -93,21 +93,17 @@ template <int N>
 Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
   const bool euler = method == GyroscopicMethod::ImplicitEuler;
   const double t = euler ? 1.0 : 0.5;
-  const int iterations = euler ? 1 : 2;
   // Both iterations use the Jacobian at the first iterate w' = w (simplified Newton): it changes by
   // O(h |w|^2) over the step, so the second iteration still converges, at a cost of one factorisation.
   const Bivector<N> iw = Bivector<N>::from(inertia * w.c);
   const linalg::LuFactors<kBiv<N>> jac(gyroscopic_jacobian<N>(inertia, w, iw, t * h));
-  Bivector<N> w2 = w;
-  for (int i = 0; i < iterations; ++i) {
-    const Bivector<N> m = euler ? w2 : (w + w2) * 0.5;
-    // (at the first iterate w' = w, so I (w' - w) = 0 and I m = I w)
-    const Bivector<N> g = i == 0 ? commutator(w, iw) * -h
-                                 : Bivector<N>::from(inertia * (w2 - w).c) -
-                                       commutator(m, Bivector<N>::from(inertia * m.c)) * h;
-    w2 -= Bivector<N>::from(jac.solve(g.c));
-  }
+  // First iteration, from w' = w: I (w' - w) = 0 and m = w, so g = -h w x I w. Implicit Euler stops here.
+  Bivector<N> w2 = w - Bivector<N>::from(jac.solve((commutator(w, iw) * -h).c));
   if (!euler) {
+    const Bivector<N> m = (w + w2) * 0.5;
+    const Bivector<N> im = Bivector<N>::from(inertia * m.c);
+    const Bivector<N> g = Bivector<N>::from(inertia * (w2 - w).c) - commutator(m, im) * h;
+    w2 -= Bivector<N>::from(jac.solve(g.c));
     const double e0 = w.c.dot(iw.c), e1 = w2.c.dot(inertia * w2.c);
     if (e1 > e0) w2 *= std::sqrt(e0 / e1);
   }
