@@ -7,20 +7,24 @@
 namespace wedge {
 
 namespace {
-// The plane of W's largest angle: u the top eigenvector of W^T W, v = W u / |W u|, angle |W u|. False when
-// the eigensolver did not converge (a generator too large to be a turn) or the angle is round-off of
-// `scale`.
+// The plane of W through the unit vector u, which lies in one of W's planes: v = W u / |W u|, angle
+// |W u|. False when the angle is round-off of `scale`.
 template <int N>
-bool largest_plane(const Mat<N>& w, double scale, BivectorPlane<N>& plane) {
-  linalg::SmallVector values;
-  linalg::SmallMatrix vectors;
-  if (!linalg::symmetric_eigen(w.transpose() * w, values, vectors)) return false;
-  const Vec<N> u = vectors.col(N - 1);
+bool plane_through(const Mat<N>& w, const Vec<N>& u, double scale, BivectorPlane<N>& plane) {
   const Vec<N> wu = w * u;
   const double angle = wu.norm();
   if (!(angle > 4e-16 * scale)) return false;
   plane = BivectorPlane<N>{angle, u, wu / angle};
   return true;
+}
+// The plane of W's largest angle, through the top eigenvector of W^T W. False also when the eigensolver
+// did not converge (a generator too large to be a turn).
+template <int N>
+bool largest_plane(const Mat<N>& w, double scale, BivectorPlane<N>& plane) {
+  linalg::SmallVector values;
+  linalg::SmallMatrix vectors;
+  if (!linalg::symmetric_eigen(w.transpose() * w, values, vectors)) return false;
+  return plane_through<N>(w, vectors.col(N - 1), scale, plane);
 }
 }  // namespace
 
@@ -37,12 +41,7 @@ BivectorDecomposition<N> decompose_generator(Mat<N> w) {
       int j = 0;
       w.colwise().squaredNorm().maxCoeff(&j);
       const double len = w.col(j).norm();
-      if (!(len > 0.0)) break;
-      const Vec<N> u = w.col(j) / len;
-      const Vec<N> wu = w * u;
-      const double angle = wu.norm();
-      if (!(angle > 4e-16 * scale)) break;  // the rest is round-off
-      plane = BivectorPlane<N>{angle, u, wu / angle};
+      if (!(len > 0.0) || !plane_through<N>(w, w.col(j) / len, scale, plane)) break;  // the rest is round-off
     } else if (!largest_plane<N>(w, scale, plane)) {
       // (an eigensolver that does not converge, for a generator too large to be a turn, ends the
       // decomposition instead of reading vectors it did not write; so does a remainder of round-off)
