@@ -1,11 +1,18 @@
 // The contact machinery World::step runs (internal). One object per world holds the broad phase, the
 // persistent pair list, the step's constraints, the solver's body copies and the islands. Each stage is
-// one member function, defined in its own file:
-//   find_contacts      pairs.cpp      broad phase, narrow phase, constraints; wakes touched islands
+// a free function, defined in its own file:
+//   find_contacts      find_contacts.cpp  the stages below, in order; wakes touched islands
+//     update_pairs       pairs.cpp          broad phase, the sorted pair list (add_body: a body's proxy)
+//     collide_pairs      collide.cpp        narrow phase, manifolds recycled (recycling.cpp) or collided
+//     load_solver_bodies build.cpp          the solver's copies of the bodies
+//     build_constraints  build.cpp          the constraints' points (update_constraint_graph in
+//                                           constraint_graph.cpp places them: seeds, colours, lanes)
 //   process_collisions solver.cpp     restitution on predicted positions (before the velocity update)
 //   process_contacts   solver.cpp     restitution 0, shock propagation, split-impulse position correction
+//   solve_substep ...  soft_step.cpp  the soft step's stages (below)
+//   solve_continuous   continuous.cpp a fast body put back where it would first reach a static shape
 //   update_islands     islands.cpp    islands of touching bodies, sleeping, the contact graph's levels
-//   report_events      pairs.cpp      began/stopped touching, sorted by pair
+//   report_events      events.cpp     began/stopped touching, sorted by pair
 // Grabs (grab.cpp) are solved inside process_contacts, before the contacts in every pass.
 // Everything runs in creation order of the bodies and sorted order of the pairs (the soft step's
 // constraints in colour order, itself a function of the pair order), so a step is a function of the
@@ -152,7 +159,7 @@ struct alignas(64) SolverBody {
 template <int N>
 struct PointConstraint {
   // (The soft step builds no PointConstraints: its points go straight into the lanes, wide.hpp and
-  // build_wide in pairs.cpp; fill_wide packs these the same way, for the tests. After the last
+  // build_wide in build.cpp; fill_wide packs these the same way, for the tests. After the last
   // sub-step the lanes' impulses go to the pairs: unpack_wide.)
   double separation = 0.0;       // m, soft step: the separation when the step began (the lanes follow it)
   double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
@@ -420,16 +427,37 @@ bool recycle_manifold(Pair<N>& pair, const Body<N>& a, const Body<N>& b, const M
                       double extent, const ContactSettings& settings);
 template <int N>
 void cache_manifold(Pair<N>& pair, const Body<N>& a, const Body<N>& b, const Mat<N>& ra, const Mat<N>& rb);
-// pairs.cpp
-template <int N>
-void add_body(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index);
-// (profile, if given, takes the broad phase's, the narrow phase's and the constraints' times.) A body's
-// material must stay the same from step to step, as World's do: a step that finds the last step's
-// constraints keeps their mixed friction and restitution (build_wide).
+// find_contacts.cpp: the stages below, in order. (profile, if given, takes the broad phase's, the
+// narrow phase's and the constraints' times.) A body's material must stay the same from step to step,
+// as World's do: a step that finds the last step's constraints keeps their mixed friction and
+// restitution (build_wide).
 template <int N>
 void find_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                    const std::vector<Material>& materials, const ContactSettings& settings, double h,
                    StepProfile* profile = nullptr);
+// pairs.cpp: a new body's proxy and box; each step, the moving bodies' proxies moved and the candidate
+// pairs merged into the sorted pair list (a pair that leaves while touching ends: `ended`).
+template <int N>
+void add_body(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, int index);
+template <int N>
+void update_pairs(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes, double h);
+// collide.cpp: every pair with an awake dynamic body (or a moving kinematic one) gets this step's
+// manifold; the sleeping islands it touches are woken, and their pairs collided in turn.
+template <int N>
+void collide_pairs(ContactState<N>& state, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
+                   const ContactSettings& settings, double h);
+// build.cpp: the solver bodies from the bodies (velocities, inverse masses, world inverse inertias;
+// soft: the bodies that do not move frozen), then the constraints and their points.
+template <int N>
+void load_solver_bodies(ContactState<N>& state, const std::vector<Body<N>>& bodies, bool soft);
+template <int N>
+void build_constraints(ContactState<N>& state, const std::vector<Body<N>>& bodies,
+                       const std::vector<Material>& materials, const ContactSettings& settings);
+// constraint_graph.cpp: this step's seeds (a pair with points and a body that moves), and unless they
+// are the last step's (graph_kept), the constraints' places: colours and lanes for the soft step.
+template <int N>
+void update_constraint_graph(ContactState<N>& state, const std::vector<Body<N>>& bodies, bool soft);
+// events.cpp
 template <int N>
 void report_events(ContactState<N>& state);
 // continuous.cpp: after the solver, each fast dynamic body swept against the static shapes on its way,
@@ -523,7 +551,7 @@ void finish_soft_step(ContactState<N>& state, std::vector<Body<N>>& bodies, cons
 // The step's colour-ordered constraints into lanes (wide.hpp): assign_lanes gives each a lane (within a
 // colour by point count, most first, kLanes to a wide constraint; the uncoloured group one to a wide
 // constraint, in order) from the constraints' bodies and point counts alone. find_contacts then builds
-// each point straight into its lane (pairs.cpp, build_wide). fill_wide does the same from points built
+// each point straight into its lane (build.cpp, build_wide). fill_wide does the same from points built
 // as PointConstraints and prepared (prepare_points: the step's separations and warm-start impulses),
 // through the same writes (lane_fill.hpp), and pack_wide for all at once: the tests' reference.
 template <int N>

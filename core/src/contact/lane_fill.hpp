@@ -1,6 +1,6 @@
 // Writing the soft step's lanes (wide.hpp) one lane at a time (internal): a wide constraint's header
 // from its constraints and bodies, and lane l of a slot from one point. find_contacts builds each point
-// straight into its lane (pairs.cpp, build_wide); fill_wide packs points already built as
+// straight into its lane (build.cpp, build_wide); fill_wide packs points already built as
 // PointConstraints (soft_step.cpp; the tests' reference). Both write through these, so the two give
 // the same lanes to the bit.
 #pragma once
@@ -32,7 +32,7 @@ PointMasses<N> masses_of(const PointConstraint<N>& x, const Vec<N>& normal) {
 }
 
 // A point as the lanes take it, but for its masses: what find_contacts builds for each point of the
-// soft step (pairs.cpp), and what fill_wide takes of a PointConstraint (lane_point).
+// soft step (build.cpp), and what fill_wide takes of a PointConstraint (lane_point).
 template <int N>
 struct LanePoint {
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m
@@ -44,7 +44,7 @@ struct LanePoint {
   double normal_impulse = 0.0, normal_total = 0.0;  // N s
   Vec<N> tangent_impulse = Vec<N>::Zero();
 };
-// What every form of a point (PointConstraint, LanePoint, pairs.cpp's PointStart) takes from the one
+// What every form of a point (PointConstraint, LanePoint, build.cpp's PointStart) takes from the one
 // it is made from when the step begins: lever arms, approach speed and friction.
 template <class To, class From>
 void copy_point_start(To& to, const From& from) {
@@ -112,7 +112,7 @@ void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
 // two parts. put_lane_state writes what changes from step to step: separations, approach, friction and
 // the warm start. put_lane_masses writes what the masses give: from m, and dn_a and dn_b (I^-1 jn) only
 // where the wide constraint keeps them (w.inertia >= 0); in 2D jt from x's lever arms, else the arms.
-// A lane kept from the last step (pairs.cpp, build_wide) takes the first alone. A constraint with fewer
+// A lane kept from the last step (build.cpp, build_wide) takes the first alone. A constraint with fewer
 // points than the slots puts a zero point (LanePoint{}) in the slots past its last: in 2D its friction
 // fields are then t . 0, as the point's own would be.
 template <int N>

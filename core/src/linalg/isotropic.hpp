@@ -1,6 +1,6 @@
 // Internal: whether an inertia (or its inverse) is the same about every plane, exactly. Cubes, balls and
 // their n-dimensional kin have one; the step then skips their gyroscopic solve (world.cpp) and the
-// contact passes scale by a number instead of multiplying by the matrix (contact/pairs.cpp).
+// contact passes scale by a number instead of multiplying by the matrix (contact/build.cpp).
 #pragma once
 
 namespace wedge::linalg {
