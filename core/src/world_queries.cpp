@@ -21,8 +21,8 @@ Transform<N> placement(const Body<N>& b) {
 // the tree, then the half-spaces).
 template <int N, class F>
 void candidates(const contact::ContactState<N>& s, const Aabb<N>& box, F&& f) {
-  s.broad_phase.query(box, [&](int proxy) { f(s.broad_phase.user_id(proxy)); });
-  for (std::uint32_t i : s.halfspaces) f(i);
+  s.list.broad_phase.query(box, [&](int proxy) { f(s.list.broad_phase.user_id(proxy)); });
+  for (std::uint32_t i : s.list.halfspaces) f(i);
 }
 }  // namespace
 

@@ -185,12 +185,9 @@ class World {
   void find_contacts(double h);
   void soft_step(double h);
   void process_collisions(double h);
-  void prepare_substep_velocities(double h);
   void integrate_velocities(double h);
-  void integrate_velocity(const Body<N>& b, double h, Vec<N>& v, Bivector<N>& w) const;
-  bool velocity_needs_body(const Body<N>& b) const;
   void process_contacts(double h);
-  void integrate_positions(double h, bool last_of_step, bool soft);
+  void integrate_positions(double h);
   void update_islands(double h);
   void report_contact_events();
   void clear_forces();

@@ -59,7 +59,7 @@ void warm_matches(const Pair<N>& p, const Vec<N>& centre_a, double distance,
 // The constraint of pair pi, its points from `first` on: its bodies, normal and materials.
 template <int N>
 Constraint<N> make_constraint(const ContactState<N>& s, const std::vector<Material>& materials, int pi, int first) {
-  const Pair<N>& p = s.pairs[pi];
+  const Pair<N>& p = s.list.pairs[pi];
   Constraint<N> c;
   c.first = first;
   c.pair = pi;
@@ -78,7 +78,7 @@ Constraint<N> make_constraint(const ContactState<N>& s, const std::vector<Materi
 // Where pair p's points were in the last step's build, or -1 (read before this step's build writes them).
 template <int N>
 int last_first(const ContactState<N>& s, const Pair<N>& p) {
-  return p.built + 1 == s.builds ? p.points_first : -1;
+  return p.built + 1 == s.graph.builds ? p.points_first : -1;
 }
 // The bodies' 1/m and isotropic 1/I, which a recycled pair's masses were formed with (Pair::mass_key).
 template <int N>
@@ -91,7 +91,7 @@ std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
 // numbers): copied rather than formed again.
 template <int N>
 int recycled_masses(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
-  if (!(s.built_soft && p.recycled && a.isotropic && b.isotropic && mass_key(a, b) == p.mass_key)) return -1;
+  if (!(s.graph.built_soft && p.recycled && a.isotropic && b.isotropic && mass_key(a, b) == p.mass_key)) return -1;
   return last_first(s, p);
 }
 
@@ -163,7 +163,7 @@ void note_constraint(Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b,
 template <int N>
 void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                       double slip_speed, double match_distance, int pi, int index, int first) {
-  Pair<N>& p = s.pairs[pi];
+  Pair<N>& p = s.list.pairs[pi];
   const Constraint<N> c = make_constraint(s, materials, pi, first);
   const SolverBody<N>& sa = s.solver_bodies[c.a];
   const SolverBody<N>& sb = s.solver_bodies[c.b];
@@ -174,7 +174,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     const PointStart<N> x = make_point(s, p, c, k, match[k], slip_speed);
     approach_speed = std::max(approach_speed, -x.approach);
     // (The array is not cleared and value-initialised each step: that was one more sweep over it.)
-    PointConstraint<N>& q = s.points[c.first + k];
+    PointConstraint<N>& q = s.paper.points[c.first + k];
     q = PointConstraint<N>{};
     copy_point_start(q, x);
     q.gap = x.gap;
@@ -187,8 +187,8 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
     q.dn_b = inverse_inertia_times(sb, q.jn_b);
     q.pseudo_mass = q.normal_mass;
   }
-  note_constraint(p, sa, sb, index, first, approach_speed, s.builds);
-  s.constraints[index] = c;
+  note_constraint(p, sa, sb, index, first, approach_speed, s.graph.builds);
+  s.graph.constraints[index] = c;
 }
 
 // The masses of a soft step point with lever arms ra, rb, formed (build_constraint's formulas).
@@ -213,7 +213,7 @@ PointMasses<N> form_point_masses(const SolverBody<N>& a, const SolverBody<N>& b,
 // into its lane (no PointConstraint is kept: writing 272 bytes a 2D point and reading them back to pack
 // the lanes, and reading the last step's for the recycled masses, was most of the build). A recycled
 // pair's masses come from the last step's point_masses, and this step's are kept there.
-// Where the graph is kept (ContactState::graph_kept) each lane of a full wide constraint holds the same
+// Where the graph is kept (ConstraintGraph::graph_kept) each lane of a full wide constraint holds the same
 // pair as in the last step, and a recycled pair's lane already holds its masses, Jacobian rows and
 // normal (nothing in the sub-steps writes them): only what changes from step to step is written, and
 // the header only where some lane's masses changed. (Half of a resting pyramid's build.)
@@ -226,11 +226,11 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   for (int l = 0; l < kLanes<N>; ++l) {
     const int index = w.constraint[l];
     if (index < 0) continue;
-    Constraint<N>& c = s.constraints[index];
-    if (s.graph_kept)
-      c.normal = s.pairs[c.pair].manifold.normal;
+    Constraint<N>& c = s.graph.constraints[index];
+    if (s.graph.graph_kept)
+      c.normal = s.list.pairs[c.pair].manifold.normal;
     else
-      c = make_constraint(s, materials, s.constraint_pairs[index], c.first);
+      c = make_constraint(s, materials, s.graph.constraint_pairs[index], c.first);
   }
   // (Every field of an occupied lane is written below, so the slots are cleared first only where a
   // lane is empty: the last wide constraint of a colour, and the uncoloured group's.)
@@ -239,14 +239,14 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   if (!full) clear_slots(s, w);
   // The last step's masses: where this step's go when the graph is kept (the same places), else the
   // other buffer (build_constraints).
-  const std::vector<PointMasses<N>>& previous = s.graph_kept ? s.point_masses : s.previous_masses;
+  const std::vector<PointMasses<N>>& previous = s.graph.graph_kept ? s.soft.point_masses : s.soft.previous_masses;
   const PointMasses<N>* last[kLanes<N>];
-  bool header_kept = s.graph_kept && full && w.inertia < 0;
+  bool header_kept = s.graph.graph_kept && full && w.inertia < 0;
   for (int l = 0; l < kLanes<N>; ++l) {
     last[l] = nullptr;
     if (w.constraint[l] < 0) continue;
-    const Constraint<N>& c = s.constraints[w.constraint[l]];
-    const Pair<N>& p = s.pairs[c.pair];
+    const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
+    const Pair<N>& p = s.list.pairs[c.pair];
     const int first = recycled_masses(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b]);
     if (first >= 0) last[l] = &previous[first];
     header_kept = header_kept && last[l];
@@ -256,14 +256,14 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
   static const LanePoint<N> none{};
   for (int l = 0; l < kLanes<N>; ++l) {
     if (w.constraint[l] < 0) continue;
-    const Constraint<N>& c = s.constraints[w.constraint[l]];
-    Pair<N>& p = s.pairs[c.pair];
+    const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
+    Pair<N>& p = s.list.pairs[c.pair];
     const SolverBody<N>& sa = s.solver_bodies[c.a];
     const SolverBody<N>& sb = s.solver_bodies[c.b];
     std::array<int, kMaxManifoldPoints<N>> match;
     warm_matches(p, bodies[c.a].center, settings.contact_margin, match);
     keep_warm_keys(p, c.count);  // (matched: the next step's keys now)
-    const bool lane_kept = s.graph_kept && full && !inertia && last[l];
+    const bool lane_kept = s.graph.graph_kept && full && !inertia && last[l];
     double approach_speed = 0.0;
     for (int k = 0; k < c.count; ++k) {
       const PointStart<N> x = make_point(s, p, c, k, match[k], settings.static_slip_speed);
@@ -273,7 +273,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
       prepare_point(q, c.normal, x.gap, settings.warm_start, x.warm_normal, x.warm_tangent);
       put_lane_state(s, w, k, l, c.normal, q);
       if (lane_kept) continue;  // (its masses are in point_masses and in the lane)
-      PointMasses<N>& m = s.point_masses[c.first + k];
+      PointMasses<N>& m = s.soft.point_masses[c.first + k];
       m = last[l] ? last[l][k] : form_point_masses(sa, sb, x.ra, x.rb, c.normal);
       const Biv dn_a = inertia ? Biv(inverse_inertia_times(sa, m.jn_a)) : Biv::Zero();
       const Biv dn_b = inertia ? Biv(inverse_inertia_times(sb, m.jn_b)) : Biv::Zero();
@@ -286,7 +286,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
       const Biv zero = Biv::Zero();
       for (int k = c.count; k < w.count; ++k) put_lane_point(s, w, k, l, c.normal, none, pad, zero, zero);
     }
-    note_constraint(p, sa, sb, w.constraint[l], c.first, approach_speed, s.builds);
+    note_constraint(p, sa, sb, w.constraint[l], c.first, approach_speed, s.graph.builds);
   }
 }
 
@@ -306,7 +306,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     sb.vp.setZero();
     sb.wp = Bivector<N>{};
     sb.frozen = soft && !moves(s, bodies, i);
-    sb.advances = b.type != BodyType::Static && s.awake[i];
+    sb.advances = b.type != BodyType::Static && s.islands.awake[i];
     if (moves(s, bodies, i)) {
       sb.inv_mass = b.inv_mass;
       sb.isotropic = linalg::is_isotropic(b.inv_inertia);
@@ -331,31 +331,31 @@ template <int N>
 void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const std::vector<Material>& materials,
                        const ContactSettings& settings) {
   const bool soft = settings.solver == ContactSolver::SoftStep;
-  ++s.builds;
+  ++s.graph.builds;
   update_constraint_graph(s, bodies, soft);
-  if (!s.graph_kept) {
-    const int total = s.constraints.empty() ? 0 : s.constraints.back().first + s.constraints.back().count;
+  if (!s.graph.graph_kept) {
+    const int total = s.graph.constraints.empty() ? 0 : s.graph.constraints.back().first + s.graph.constraints.back().count;
     // (The last step's masses are kept for the recycled pairs; the build writes every one it uses. With
     // the graph kept they stay where they are: each constraint's points are where they were.)
     if (soft) {
-      s.point_masses.swap(s.previous_masses);
-      s.point_masses.resize(total);
+      s.soft.point_masses.swap(s.soft.previous_masses);
+      s.soft.point_masses.resize(total);
     } else {
-      s.points.resize(total);
+      s.paper.points.resize(total);
     }
   }
   if (soft) {
-    s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-      for (int i = begin; i < end; ++i) build_wide(s, bodies, materials, settings, s.wide[i]);
+    s.workers.for_ranges(int(s.soft.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) build_wide(s, bodies, materials, settings, s.soft.wide[i]);
     });
   } else {
-    s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int k0, int k1) {
+    s.workers.for_ranges(int(s.graph.constraints.size()), kConstraintGrain, [&](int k0, int k1) {
       for (int k = k0; k < k1; ++k)
         build_constraint(s, bodies, materials, settings.static_slip_speed, settings.contact_margin,
-                         s.constraint_pairs[k], k, s.constraints[k].first);
+                         s.graph.constraint_pairs[k], k, s.graph.constraints[k].first);
     });
   }
-  s.built_soft = soft;
+  s.graph.built_soft = soft;
 }
 
 #define WEDGE_INSTANTIATE(N)                                                                         \

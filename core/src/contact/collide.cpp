@@ -26,8 +26,8 @@ bool flat_faced(const Shape<N>& shape) {
 // of the sphere about the centre of mass that holds its bounding box (at most the box's diagonal). Zero for a half-space (static).
 template <int N>
 double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
-  if (s.proxy[i] < 0) return 0.0;
-  return b.velocity.norm() + b.angular_velocity.c.norm() * s.box[i].extents().norm();
+  if (s.list.proxy[i] < 0) return 0.0;
+  return b.velocity.norm() + b.angular_velocity.c.norm() * s.list.box[i].extents().norm();
 }
 
 // One pair's manifold: recycled while the bodies barely move relative to each other, else collided with
@@ -38,18 +38,18 @@ template <int N>
                                    const Shapes<N>& shapes, const ContactSettings& settings, double h) {
   const Body<N>& a = bodies[p.a];
   const Body<N>& b = bodies[p.b];
-  const double reach = h * (s.speed[p.a] + s.speed[p.b]);
+  const double reach = h * (s.narrow.speed[p.a] + s.narrow.speed[p.b]);
   CollisionSettings cs;
   cs.exact_separation = false;
   cs.face_preference = settings.face_preference;
   cs.contact_margin = settings.contact_margin + reach;
-  const Transform<N>& ta = s.pose[p.a];
-  const Transform<N>& tb = s.pose[p.b];
+  const Transform<N>& ta = s.narrow.pose[p.a];
+  const Transform<N>& tb = s.narrow.pose[p.b];
   // Recycled only between slow bodies (soft step): a fast one may meet new features within the step.
   const bool flat = settings.solver == ContactSolver::SoftStep && flat_faced(*shapes[p.a]) && flat_faced(*shapes[p.b]);
   // How far a point of a body that moves can be from its centre (0 for static bodies).
-  const double extent = std::max(a.type == BodyType::Static ? 0.0 : s.radius[p.a],
-                                 b.type == BodyType::Static ? 0.0 : s.radius[p.b]);
+  const double extent = std::max(a.type == BodyType::Static ? 0.0 : s.list.radius[p.a],
+                                 b.type == BodyType::Static ? 0.0 : s.list.radius[p.b]);
   p.recycled = flat && reach <= settings.recycle_distance &&
                recycle_manifold(p, a, b, ta.rotation, tb.rotation, extent, settings);
   if (!p.recycled) {
@@ -81,47 +81,47 @@ template <int N>
 void collide_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                    const ContactSettings& settings, double h) {
   auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
-  auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.awake[i]; };
+  auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.islands.awake[i]; };
   // (Every body's: waking in a later round moves none.)
-  s.pose.resize(bodies.size());
-  s.speed.resize(bodies.size());
-  s.start_center.resize(bodies.size());
-  s.start_rotor.resize(bodies.size());
+  s.narrow.pose.resize(bodies.size());
+  s.narrow.speed.resize(bodies.size());
+  s.narrow.start_center.resize(bodies.size());
+  s.narrow.start_rotor.resize(bodies.size());
   for_each_body(s, int(bodies.size()), [&](int i) {
-    s.pose[i] = transform_of(bodies[i]);
-    s.speed[i] = speed_bound(s, bodies[i], i);
-    s.start_center[i] = bodies[i].center;
-    s.start_rotor[i] = bodies[i].rotor;
+    s.narrow.pose[i] = transform_of(bodies[i]);
+    s.narrow.speed[i] = speed_bound(s, bodies[i], i);
+    s.narrow.start_center[i] = bodies[i].center;
+    s.narrow.start_rotor[i] = bodies[i].rotor;
   });
   for (bool again = true, first = true; again; first = false) {
     again = false;
-    s.narrow_list.clear();
-    for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
-      Pair<N>& p = s.pairs[pi];
+    s.narrow.list.clear();
+    for (std::size_t pi = 0; pi < s.list.pairs.size(); ++pi) {
+      Pair<N>& p = s.list.pairs[pi];
       if (first) p.updated = false;  // (in the same sweep: the pairs are kilobytes)
       const Body<N>& a = bodies[p.a];
       const Body<N>& b = bodies[p.b];
       if (!p.updated && (active(p.a) || active(p.b) || (moving_kinematic(a) && b.is_dynamic()) ||
                          (moving_kinematic(b) && a.is_dynamic())))
-        s.narrow_list.push_back(int(pi));
+        s.narrow.list.push_back(int(pi));
     }
     // (Whether a pair touches a sleeping body is noted as it is collided, and only those pairs are
     // read again, in order, to wake: reading every pair again was a sweep over kilobytes of pairs.)
-    s.narrow_wakes.resize(s.narrow_list.size());
-    s.workers.for_ranges(int(s.narrow_list.size()), kConstraintGrain, [&](int begin, int end) {
+    s.narrow.wakes.resize(s.narrow.list.size());
+    s.workers.for_ranges(int(s.narrow.list.size()), kConstraintGrain, [&](int begin, int end) {
       for (int k = begin; k < end; ++k) {
-        if (k + kPrefetchAhead < end) prefetch_pair(s.pairs[s.narrow_list[k + kPrefetchAhead]]);
-        Pair<N>& p = s.pairs[s.narrow_list[k]];
+        if (k + kPrefetchAhead < end) prefetch_pair(s.list.pairs[s.narrow.list[k + kPrefetchAhead]]);
+        Pair<N>& p = s.list.pairs[s.narrow.list[k]];
         collide_pair(s, p, bodies, shapes, settings, h);
-        s.narrow_wakes[k] = p.manifold.count > 0 && (sleeps(p.a) || sleeps(p.b));
+        s.narrow.wakes[k] = p.manifold.count > 0 && (sleeps(p.a) || sleeps(p.b));
       }
     });
-    for (std::size_t k = 0; k < s.narrow_list.size(); ++k) {
-      if (!s.narrow_wakes[k]) continue;
-      const Pair<N>& p = s.pairs[s.narrow_list[k]];
+    for (std::size_t k = 0; k < s.narrow.list.size(); ++k) {
+      if (!s.narrow.wakes[k]) continue;
+      const Pair<N>& p = s.list.pairs[s.narrow.list[k]];
       for (const std::uint32_t i : {p.a, p.b})
         if (sleeps(i)) {  // (unless a pair before it woke it)
-          s.wake_island(int(i));
+          s.islands.wake_island(int(i));
           again = true;
         }
     }

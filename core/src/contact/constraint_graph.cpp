@@ -24,24 +24,24 @@ template <int N>
 void colour_constraints(ContactState<N>& s, std::size_t bodies) {
   constexpr int kColours = 32;  // the bits of a body's mask: countr_one gives kColours when all are taken
   static_assert(kColours == std::numeric_limits<std::uint32_t>::digits);
-  s.colour_mask.assign(bodies, 0);
-  s.colour_of.resize(s.seeds.size());
+  s.graph.colour_mask.assign(bodies, 0);
+  s.graph.colour_of.resize(s.graph.seeds.size());
   std::array<int, kColours + 3> start{};
-  for (std::size_t k = 0; k < s.seeds.size(); ++k) {
-    const auto& e = s.seeds[k];
-    const std::uint32_t used = (e.move_a ? s.colour_mask[e.a] : 0u) | (e.move_b ? s.colour_mask[e.b] : 0u);
+  for (std::size_t k = 0; k < s.graph.seeds.size(); ++k) {
+    const auto& e = s.graph.seeds[k];
+    const std::uint32_t used = (e.move_a ? s.graph.colour_mask[e.a] : 0u) | (e.move_b ? s.graph.colour_mask[e.b] : 0u);
     const int c = std::countr_one(used);
     if (c < kColours) {
-      if (e.move_a) s.colour_mask[e.a] |= 1u << c;
-      if (e.move_b) s.colour_mask[e.b] |= 1u << c;
+      if (e.move_a) s.graph.colour_mask[e.a] |= 1u << c;
+      if (e.move_b) s.graph.colour_mask[e.b] |= 1u << c;
     }
-    s.colour_of[k] = c;
+    s.graph.colour_of[k] = c;
     ++start[c + 2];
   }
   for (int c = 2; c < kColours + 3; ++c) start[c] += start[c - 1];  // start[c + 1]: where colour c begins
-  s.colour_start.assign(start.begin() + 1, start.end());
-  s.colour_order.resize(s.seeds.size());  // (of the seeds)
-  for (std::size_t k = 0; k < s.seeds.size(); ++k) s.colour_order[start[s.colour_of[k] + 1]++] = int(k);
+  s.graph.colour_start.assign(start.begin() + 1, start.end());
+  s.graph.colour_order.resize(s.graph.seeds.size());  // (of the seeds)
+  for (std::size_t k = 0; k < s.graph.seeds.size(); ++k) s.graph.colour_order[start[s.graph.colour_of[k] + 1]++] = int(k);
 }
 
 // Where each constraint's points go (and its bodies and count, which the lanes are assigned by), in
@@ -50,16 +50,16 @@ void colour_constraints(ContactState<N>& s, std::size_t bodies) {
 // of the build's time.)
 template <int N>
 void place_constraints(ContactState<N>& s, std::size_t bodies, bool soft) {
-  s.colour_start.clear();
+  s.graph.colour_start.clear();
   if (soft) colour_constraints(s, bodies);
-  const std::size_t count = s.seeds.size();
-  s.constraints.resize(count);
-  s.constraint_pairs.resize(count);
+  const std::size_t count = s.graph.seeds.size();
+  s.graph.constraints.resize(count);
+  s.graph.constraint_pairs.resize(count);
   int total = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const auto& e = s.seeds[soft ? std::size_t(s.colour_order[k]) : k];
-    s.constraint_pairs[k] = e.pair;
-    Constraint<N>& c = s.constraints[k];
+    const auto& e = s.graph.seeds[soft ? std::size_t(s.graph.colour_order[k]) : k];
+    s.graph.constraint_pairs[k] = e.pair;
+    Constraint<N>& c = s.graph.constraints[k];
     c.first = total;
     c.count = e.count;
     c.a = int(e.a);
@@ -73,10 +73,10 @@ void place_constraints(ContactState<N>& s, std::size_t bodies, bool soft) {
 
 template <int N>
 void update_constraint_graph(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool soft) {
-  s.seeds.swap(s.previous_seeds);
-  s.seeds.clear();
-  for (std::size_t pi = 0; pi < s.pairs.size(); ++pi) {
-    Pair<N>& p = s.pairs[pi];
+  s.graph.seeds.swap(s.graph.previous_seeds);
+  s.graph.seeds.clear();
+  for (std::size_t pi = 0; pi < s.list.pairs.size(); ++pi) {
+    Pair<N>& p = s.list.pairs[pi];
     p.constraint = -1;
     if (!p.updated) continue;
     if (p.manifold.count == 0) {
@@ -85,15 +85,15 @@ void update_constraint_graph(ContactState<N>& s, const std::vector<Body<N>>& bod
     }
     const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
     if (!da && !db) continue;
-    s.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db, !da || s.solver_bodies[p.a].isotropic,
+    s.graph.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db, !da || s.solver_bodies[p.a].isotropic,
                        !db || s.solver_bodies[p.b].isotropic});
   }
   // The same seeds as the last soft step's: the same colours and lanes, and the constraints' places.
-  static_assert(std::has_unique_object_representations_v<typename ContactState<N>::Seed>);  // (memcmp is ==)
-  s.graph_kept = soft && s.built_soft && s.seeds.size() == s.previous_seeds.size() &&
-                 (s.seeds.empty() ||
-                  std::memcmp(s.seeds.data(), s.previous_seeds.data(), s.seeds.size() * sizeof(s.seeds[0])) == 0);
-  if (!s.graph_kept) place_constraints(s, bodies.size(), soft);
+  static_assert(std::has_unique_object_representations_v<typename ConstraintGraph<N>::Seed>);  // (memcmp is ==)
+  s.graph.graph_kept = soft && s.graph.built_soft && s.graph.seeds.size() == s.graph.previous_seeds.size() &&
+                 (s.graph.seeds.empty() ||
+                  std::memcmp(s.graph.seeds.data(), s.graph.previous_seeds.data(), s.graph.seeds.size() * sizeof(s.graph.seeds[0])) == 0);
+  if (!s.graph.graph_kept) place_constraints(s, bodies.size(), soft);
 }
 
 #define WEDGE_INSTANTIATE(N) \

@@ -37,6 +37,11 @@
 #include "contact/wide.hpp"
 #include "parallel/workers.hpp"
 
+namespace wedge::dynamics {
+template <int N>
+struct Motion;  // dynamics/integrate.hpp
+}  // namespace wedge::dynamics
+
 namespace wedge::contact {
 
 // A pair of bodies whose bounding boxes overlap (or a half-space and a body below its plane), a < b.
@@ -55,8 +60,8 @@ struct alignas(64) Pair {
   // events' sweep over every pair reads these alone.)
   int constraint = -1;
   Manifold<N> manifold;
-  // Where its points were put in ContactState::points or point_masses by the build numbered `built`
-  // (ContactState::builds), or -1: the last step's when built + 1 is this step's number (last_first).
+  // Where its points were put in PaperSolver::points or SoftSolver::point_masses by the build numbered `built`
+  // (ConstraintGraph::builds), or -1: the last step's when built + 1 is this step's number (last_first).
   // recycled (soft step): this step's manifold is the last step's carried along (recycling.cpp), so a
   // point's normal, lever arms and, for bodies whose inertia is isotropic, effective masses are the
   // same, and the build takes them from the last step's. mass_key: the bodies' 1/m and isotropic 1/I
@@ -129,11 +134,12 @@ struct alignas(64) SolverBody {
   Bivector<N> warm_w{};
   Vec<N> v0 = Vec<N>::Zero();  // velocities before the stage (its energy check) or soft-step pass
   Bivector<N> w0{};
-  // Soft step: a sub-step's velocity integration, the same for each of the step's sub-steps (World::
-  // soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
+  // Soft step: a sub-step's velocity integration, the same for each of the step's sub-steps
+  // (prepare_soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
   Vec<N> dv = Vec<N>::Zero();
   double decay_v = 1.0, decay_w = 1.0;
-  // Then what the position update reads and writes of it (World::integrate_positions).
+  // Then what the position update reads and writes of it (integrate_substep_positions, and World's
+  // integrate_positions for the paper's solver).
   Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
   Bivector<N> wp{};
   // Soft step: where the body was when the step began, and how far it has moved and turned since
@@ -194,7 +200,7 @@ struct PointConstraint {
 
 // What the soft step's lanes take of a point's effective masses and Jacobian (the rest of its lanes come
 // from its LanePoint, lane_fill.hpp): formed from K, or, for a recycled pair of isotropic bodies, the last step's
-// (ContactState::point_masses, Pair::points_first and built). 2D keeps the tangent mass along t alone (wide.hpp).
+// (SoftSolver::point_masses, Pair::points_first and built). 2D keeps the tangent mass along t alone (wide.hpp).
 template <int N>
 struct PointMasses {
   using Biv = Eigen::Matrix<double, kBiv<N>, 1>;
@@ -257,8 +263,6 @@ struct GrabConstraint {
   Vec<N> impulse = Vec<N>::Zero();           // N s, accumulated (kept between steps: warm start)
 };
 
-// Everything the contact stages keep between and during steps. Plain data: the stages are free
-// functions, one file per group (see the top of this file).
 // The instruction set of the soft step's lane kernels (wide.hpp): 2-lane packs (SSE2, or NEON), or in
 // 2D and 3D 4-lane packs on AVX2 or AVX-512 (the same packs, with twice the registers). All give the
 // same bits.
@@ -270,8 +274,13 @@ Lanes default_lanes();
 // Whether this CPU (and build) can run the lanes l.
 bool lanes_supported(Lanes l);
 
+// The state of each group of stages, owned by that group (the file named) and read by the others only
+// where the comment says so. ContactState below holds one of each.
+
+// The pair list (pairs.cpp): the broad phase and its per-body proxies and boxes, the candidate pairs,
+// and the persistent sorted list of pairs.
 template <int N>
-struct ContactState {
+struct PairList {
   BroadPhase<N> broad_phase;
   std::vector<int> proxy;                 // per body: broad-phase proxy, -1 without one
   std::vector<Aabb<N>> box;               // per body: tight world box at the last update
@@ -284,19 +293,28 @@ struct ContactState {
   std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, previous_halfspace_pairs;
   std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
   std::vector<std::uint64_t> pair_keys;     // a << 32 | b of each pair, in order (merge_pairs' check)
-  std::vector<int> narrow_list;             // the narrow phase's pairs of one round
-  // Per body, for the narrow phase: its transform and how fast any of its points moves (m/s), formed
-  // once per step instead of once per pair side (a pyramid's box has up to six pairs).
+};
+
+// The narrow phase (collide.cpp), and what continuous collision (continuous.cpp) reads of it.
+template <int N>
+struct NarrowPhase {
+  std::vector<int> list;  // the pairs of one round
+  // Per body: its transform and how fast any of its points moves (m/s), formed once per step instead
+  // of once per pair side (a pyramid's box has up to six pairs).
   std::vector<Transform<N>> pose;
   std::vector<double> speed;
   // Per body, where the step began (continuous collision sweeps from there).
   std::vector<Vec<N>> start_center;
   std::vector<Rotor<N>> start_rotor;
-  std::vector<int> continuous_hits;  // scratch: the static bodies a swept body may reach
-  std::vector<unsigned char> narrow_wakes;  // per narrow_list entry: it touches a sleeping body
+  std::vector<unsigned char> wakes;  // per list entry: it touches a sleeping body
+  std::vector<int> continuous_hits;  // continuous.cpp's scratch: the static bodies a swept body may reach
+};
 
-  std::vector<SolverBody<N>> solver_bodies;  // per body
-  std::vector<Constraint<N>> constraints;    // in pair order (the paper's solver) or colour order (soft step)
+// The step's constraints (constraint_graph.cpp places them, build.cpp builds them): in pair order (the
+// paper's solver) or colour order (soft step).
+template <int N>
+struct ConstraintGraph {
+  std::vector<Constraint<N>> constraints;
   std::vector<int> constraint_pairs;         // the pairs that make them, in that order
   std::vector<std::uint32_t> colour_mask;    // per body: the colours its constraints took this step
   std::vector<int> colour_of, colour_order;  // colouring scratch (colour_order: the seeds in colour order)
@@ -317,47 +335,52 @@ struct ContactState {
   // Soft step: where each colour's constraints begin, the uncoloured group's last, then the end (empty
   // for the paper's solver, whose constraints are in pair order).
   std::vector<int> colour_start;
-  std::vector<PointConstraint<N>> points;
-  // The soft step builds no PointConstraints: its points go straight into the lanes, and what a recycled
-  // pair's points keep is here, this step's and the last (Pair::points_first, built).
-  std::vector<PointMasses<N>> point_masses, previous_masses;
-  bool built_soft = false;  // the last step's constraints were the soft step's (previous_masses is theirs)
+  bool built_soft = false;   // the last step's constraints were the soft step's (previous_masses is theirs)
   std::uint64_t builds = 0;  // the builds so far, this step's included (Pair::built)
-  // Soft step: the constraints in lanes (wide.hpp), colour by colour; wide_start as colour_start.
+};
+
+// The paper's solver (solver.cpp): the constraints' points (built by build.cpp; the tests pack the soft
+// step's lanes from them too, fill_wide), shock propagation's order, the collision stage's energy terms.
+template <int N>
+struct PaperSolver {
+  std::vector<PointConstraint<N>> points;
+  std::vector<int> shock_order;                 // constraints sorted by level (stable)
+  std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
+  std::vector<double> group_b, group_c;         // collision-stage energy terms per group
+  std::vector<char> group_driven;               // per group root: holds a grabbed body (no energy limit)
+};
+
+// The soft step (soft_step.cpp; build.cpp writes its lanes): the constraints in lanes (wide.hpp), colour
+// by colour, and the sub-steps' bookkeeping.
+template <int N>
+struct SoftSolver {
+  // What a recycled pair's points keep, this step's and the last (Pair::points_first, built): the
+  // build writes points straight into the lanes and keeps no PointConstraints.
+  std::vector<PointMasses<N>> point_masses, previous_masses;
   std::vector<WideConstraint<N>> wide;
   std::vector<WidePoint<N>> wide_points;
   std::vector<WidePointCold<N>> wide_cold;  // beside wide_points
   std::vector<Wide<N>> wide_approach;       // beside wide_points: m/s, the normal velocity at the start (restitution)
   std::vector<WideInertia<N>> wide_inertia;
-  std::vector<int> wide_start, wide_scratch;
+  std::vector<int> wide_start, wide_scratch;  // wide_start: as ConstraintGraph::colour_start
   Lanes lanes = default_lanes();  // the lane kernels' instruction set (the same bits either way)
-  double soft_bias_rate = 0.0, soft_mass_scale = 1.0, soft_impulse_scale = 0.0;  // the soft step's contact spring
-  int substep = 0;  // soft step: the sub-steps begun in this step
-  // Soft step: the relax pass's velocity changes are still to join warm_v (add_pass_change), in the
-  // next sub-step's first sweep over the bodies (solve_substep), or in World's for the bodies apart.
+  double bias_rate = 0.0, mass_scale = 1.0, impulse_scale = 0.0;  // the contact spring
+  int substep = 0;  // the sub-steps begun in this step
+  // The relax pass's velocity changes are still to join warm_v (add_pass_change), in the next
+  // sub-step's first sweep over the bodies (solve_substep), or integrate_velocities_apart's.
   bool pass_change_pending = false;
-  // Soft step: the solve pass's finish (finish_pass: its changes to warm_v, then v0 = v) is still to be
-  // done, by World's position update as it moves each body, or by the relax pass first.
+  // The solve pass's finish (finish_pass: its changes to warm_v, then v0 = v) is still to be done, by
+  // integrate_substep_positions as it moves each body, or by the relax pass first.
   bool solve_finish_pending = false;
-  std::vector<int> shock_order;  // constraints sorted by level (stable)
-  std::vector<int> level_start, shock_scratch;  // its counting sort's buffers
+  std::vector<int> integrate_apart;  // moving bodies whose velocities integrate_velocities_apart integrates
+};
 
-  // Islands and sleep, per body.
+// Islands and sleep (islands.cpp), per body; every stage reads `awake`, and wakes through wake_island.
+struct Islands {
   std::vector<char> awake;
-  std::vector<int> integrate_apart;  // soft step: moving bodies whose velocities World integrates itself
   std::vector<double> sleep_time;  // s spent below the sleep speed
   std::vector<int> island;         // label (smallest body index) of the island the body was last in, or -1
   std::vector<int> union_parent, bfs_queue, adjacency_start, adjacency;
-  std::vector<double> group_b, group_c;  // collision-stage energy terms per group
-  std::vector<char> group_driven;        // per group root: holds a grabbed body (no energy limit)
-
-  std::vector<GrabConstraint<N>> grabs;  // slots, solved in slot order
-  std::vector<char> driven;               // per body: held by an active grab this step
-
-  parallel::Workers workers;  // WorldSettings::workers, set by World::step
-
-  std::vector<ContactBeginEvent<N>> begin_events;
-  std::vector<ContactEndEvent> end_events, ended;  // ended: pairs dropped by the broad phase this step
 
   void wake(int i) {
     awake[i] = 1;
@@ -371,6 +394,30 @@ struct ContactState {
     for (std::size_t j = 0; j < island.size(); ++j)
       if (island[j] == label && !awake[j]) wake(int(j));
   }
+};
+
+// The contact events (events.cpp).
+template <int N>
+struct Events {
+  std::vector<ContactBeginEvent<N>> begin;
+  std::vector<ContactEndEvent> end, ended;  // ended: pairs dropped by the broad phase this step (pairs.cpp)
+};
+
+// Everything the contact stages keep between and during steps: each group's state, the solver's copies
+// of the bodies, which every stage reads, and the grabs.
+template <int N>
+struct ContactState {
+  PairList<N> list;
+  NarrowPhase<N> narrow;
+  ConstraintGraph<N> graph;
+  PaperSolver<N> paper;
+  SoftSolver<N> soft;
+  Islands islands;
+  Events<N> events;
+  std::vector<SolverBody<N>> solver_bodies;  // per body (build.cpp loads them)
+  std::vector<GrabConstraint<N>> grabs;      // slots, solved in slot order (grab.cpp)
+  std::vector<char> driven;                  // per body: held by an active grab this step
+  parallel::Workers workers;                 // WorldSettings::workers, set by World::step
 };
 
 // The fewest items a thread takes when a loop is split: below this the hand-over costs more than the
@@ -389,8 +436,8 @@ void for_each_body(ContactState<N>& s, int count, F&& fn) {
 // fn(constraint) for every constraint, each touching only its own points and pair (any order).
 template <int N, class F>
 void for_each_constraint(ContactState<N>& s, F&& fn) {
-  s.workers.for_ranges(int(s.constraints.size()), kConstraintGrain, [&](int begin, int end) {
-    for (int k = begin; k < end; ++k) fn(s.constraints[k]);
+  s.workers.for_ranges(int(s.graph.constraints.size()), kConstraintGrain, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) fn(s.graph.constraints[k]);
   });
 }
 // fn(begin, end) over items[first, last) (constraints, or wide constraints), each with first and count
@@ -480,16 +527,24 @@ template <int N>
 void warm_start_grabs(ContactState<N>& state);
 template <int N>
 double solve_grabs(ContactState<N>& state);
-// soft_step.cpp: the SoftStep solver's stages; World::step runs, per sub-step, the velocity integration
-// of the bodies in integrate_apart, solve_substep(use_bias = true) (the others' velocity integration
-// first, integrate_substep_velocity), integrate_positions (with track_body_motion) and
-// solve_substep(false).
-// prepare_soft_step = start_body_motion for every body, then prepare_soft_contacts. World does the
-// first in its own sweep over the bodies at the step's start (prepare_substep_velocities), one sweep
-// fewer.
+// soft_step.cpp: the SoftStep solver's stages. World::step runs prepare_soft_step, then per sub-step
+// integrate_velocities_apart, solve_substep(use_bias = true) (the other bodies' velocity integration
+// first, integrate_substep_velocity), integrate_substep_positions (with track_body_motion) and
+// solve_substep(false), then finish_soft_step.
+// prepare_soft_step: where each body starts (start_body_motion), its sub-steps' velocity integration
+// from `motion` (without one, the tests', the velocities are not integrated: the caller changes them
+// between sub-steps), then prepare_soft_contacts.
 template <int N>
 void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
-                       double h);
+                       double h, const dynamics::Motion<N>* motion = nullptr);
+// The velocities of the bodies the solve sub-step cannot integrate itself (a torque, or a gyroscopic
+// term), integrated from the bodies (dynamics::integrate_velocity).
+template <int N>
+void integrate_velocities_apart(ContactState<N>& state, const std::vector<Body<N>>& bodies,
+                                const dynamics::Motion<N>& motion, double h);
+// Every awake body moved by its solver body's velocities over h (and, when repair_now, its rotor repaired).
+template <int N>
+void integrate_substep_positions(ContactState<N>& state, std::vector<Body<N>>& bodies, double h, bool repair_now);
 template <int N>
 void prepare_soft_contacts(ContactState<N>& state, const ContactSettings& settings, double h);
 // Where a body starts the soft step, for its motion since (track_body_motion).
@@ -506,19 +561,19 @@ void solve_substep(ContactState<N>& state, std::vector<Body<N>>& bodies, const C
 template <int N>
 void track_substep_motion(ContactState<N>& state, const std::vector<Body<N>>& bodies);
 // The relax pass's velocity changes added to warm_v now, in a sweep of their own, for a caller that
-// changes the solver bodies' velocities between sub-steps itself (the tests; World adds those of the
-// bodies it integrates apart, and solve_substep the rest).
+// changes the solver bodies' velocities between sub-steps itself (the tests; integrate_velocities_apart
+// adds those of the bodies it integrates, and solve_substep the rest).
 template <int N>
 void flush_pass_change(ContactState<N>& state);
 // One body's part of it: how far it has moved (dp) and turned (dq = R R0^-1) since the step began, for
-// the relax pass's separations. World::integrate_positions calls it for each body it moves in the soft
-// step, in the same sweep, rather than in a sweep of its own over every body per sub-step.
+// the relax pass's separations. integrate_substep_positions calls it for each body it moves, in the
+// same sweep, rather than in a sweep of its own over every body per sub-step.
 template <int N>
 inline void track_body_motion(SolverBody<N>& sb, const Body<N>& body) {
   sb.dp = body.center - sb.x0;
   sb.dq = to_matrix(body.rotor) * sb.r0_inverse;
 }
-// A body's velocity integration in a sub-step (World::integrate_velocities' arithmetic, from the step's
+// A body's velocity integration in a sub-step (dynamics::integrate_velocity's arithmetic, from the step's
 // constants): the solve sub-step runs it in its first sweep over the bodies. Through the sub-steps the
 // velocities live in the solver bodies alone; finish_soft_step stores them to the bodies.
 // The soft step's warm start, body by body (soft_step.cpp, warm_start_substep): after a contact pass
@@ -581,7 +636,7 @@ void update_islands(ContactState<N>& state, std::vector<Body<N>>& bodies, const 
 // A body the solvers move: dynamic and awake. Static, kinematic and sleeping bodies are only read.
 template <int N>
 inline bool moves(const ContactState<N>& s, const std::vector<Body<N>>& bodies, std::size_t i) {
-  return bodies[i].is_dynamic() && s.awake[i];
+  return bodies[i].is_dynamic() && s.islands.awake[i];
 }
 
 // Kinematic bodies with a velocity can hit sleeping bodies and keep them awake; resting ones behave

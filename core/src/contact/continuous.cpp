@@ -37,9 +37,9 @@ namespace {
 // end of the step, times h.
 template <int N>
 bool moved_fast(const ContactState<N>& s, const Body<N>& b, int i, double h) {
-  const double limit = 0.5 * s.inradius[i];
-  const double end_speed = b.velocity.norm() + b.angular_velocity.c.norm() * s.radius[i];
-  return (b.center - s.start_center[i]).norm() > limit || h * std::max(s.speed[i], end_speed) > limit;
+  const double limit = 0.5 * s.list.inradius[i];
+  const double end_speed = b.velocity.norm() + b.angular_velocity.c.norm() * s.list.radius[i];
+  return (b.center - s.narrow.start_center[i]).norm() > limit || h * std::max(s.narrow.speed[i], end_speed) > limit;
 }
 
 // A box around every pose of the sweep: each point of the body stays within its radius of the centre,
@@ -76,8 +76,8 @@ bool contacts_failed(const ContactState<N>& s, const std::vector<Body<N>>& bodie
   const Manifold<N> m = collide(*shapes[i], tb, *shapes[hit.wall], tw);  // (normal from the body to the wall)
   if (m.normal.dot(hit.normal) < 0.0) return true;
   if (hit.t == 0.0) return false;  // (touching from the start: the contacts' own penetration, not a pass)
-  double thin = s.inradius[i];
-  if (shapes[hit.wall]->bounded()) thin = std::min(thin, s.inradius[hit.wall]);
+  double thin = s.list.inradius[i];
+  if (shapes[hit.wall]->bounded()) thin = std::min(thin, s.list.inradius[hit.wall]);
   return m.intersecting && m.depth > std::min(settings.continuous_gap, 0.25 * thin);
 }
 
@@ -156,16 +156,16 @@ template <int N>
 void sweep_body(ContactState<N>& s, std::vector<Body<N>>& bodies, const Shapes<N>& shapes,
                 const std::vector<Material>& materials, const ContactSettings& settings, int i) {
   Body<N>& b = bodies[i];
-  const Sweep<N> sweep = Sweep<N>::between(s.start_center[i], s.start_rotor[i], b.center, b.rotor, b.local_center);
+  const Sweep<N> sweep = Sweep<N>::between(s.narrow.start_center[i], s.narrow.start_rotor[i], b.center, b.rotor, b.local_center);
   // The static bodies near the path: from the broad phase, and every half-space (in creation order, so
   // that the result does not depend on the tree's order).
-  std::vector<int>& hits = s.continuous_hits;
+  std::vector<int>& hits = s.narrow.continuous_hits;
   hits.clear();
-  s.broad_phase.query(swept_box(sweep, s.radius[i]), [&](int proxy) {
-    const std::uint32_t j = s.broad_phase.user_id(proxy);
+  s.list.broad_phase.query(swept_box(sweep, s.list.radius[i]), [&](int proxy) {
+    const std::uint32_t j = s.list.broad_phase.user_id(proxy);
     if (bodies[j].type == BodyType::Static) hits.push_back(int(j));
   });
-  for (const std::uint32_t j : s.halfspaces) hits.push_back(int(j));
+  for (const std::uint32_t j : s.list.halfspaces) hits.push_back(int(j));
   std::sort(hits.begin(), hits.end());
   const Impact<N> hit = first_failed_impact(s, bodies, shapes, i, sweep, hits, settings);
   if (hit.t >= 1.0) return;
@@ -185,8 +185,8 @@ void solve_continuous(ContactState<N>& s, std::vector<Body<N>>& bodies, const Sh
                       const std::vector<Material>& materials, const ContactSettings& settings, double h) {
   for (int i = 0; i < int(bodies.size()); ++i) {
     Body<N>& b = bodies[i];
-    if (!b.is_dynamic() || !s.awake[i]) continue;
-    if (settings.continuous && s.proxy[i] >= 0 && moved_fast(s, b, i, h))
+    if (!b.is_dynamic() || !s.islands.awake[i]) continue;
+    if (settings.continuous && s.list.proxy[i] >= 0 && moved_fast(s, b, i, h))
       sweep_body(s, bodies, shapes, materials, settings, i);
     limit_spin(b, h, settings);
   }

@@ -10,9 +10,9 @@ namespace wedge::contact {
 // this step (asleep) keep their state.
 template <int N>
 void report_events(ContactState<N>& s) {
-  s.begin_events.clear();
-  s.end_events = s.ended;
-  for (Pair<N>& p : s.pairs) {
+  s.events.begin.clear();
+  s.events.end = s.events.ended;
+  for (Pair<N>& p : s.list.pairs) {
     if (!p.updated) continue;
     // A penetrating pair touches whatever its impulses: those are read only where they decide, or
     // for a begin event (most resting pairs penetrate a little, and need not read them).
@@ -35,13 +35,13 @@ void report_events(ContactState<N>& s) {
       e.normal_impulse = total;
       e.point = total > 0.0 ? Vec<N>(weighted / total) : p.manifold.points[0].point;
       e.approach_speed = approach;
-      s.begin_events.push_back(e);
+      s.events.begin.push_back(e);
     } else if (!touching && p.touching) {
-      s.end_events.push_back({BodyId{p.a}, BodyId{p.b}});
+      s.events.end.push_back({BodyId{p.a}, BodyId{p.b}});
     }
     p.touching = touching;
   }
-  std::sort(s.end_events.begin(), s.end_events.end(), [](const ContactEndEvent& x, const ContactEndEvent& y) {
+  std::sort(s.events.end.begin(), s.events.end.end(), [](const ContactEndEvent& x, const ContactEndEvent& y) {
     return x.a.index != y.a.index ? x.a.index < y.a.index : x.b.index < y.b.index;
   });
 }

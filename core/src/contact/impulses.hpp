@@ -96,7 +96,7 @@ void snapshot_velocities(ContactState<N>& s) {
 template <int N>
 void store_velocities(ContactState<N>& s, std::vector<Body<N>>& bodies) {
   for_each_body(s, int(bodies.size()), [&](int i) {
-    if (!bodies[i].is_dynamic() || !s.awake[i]) return;
+    if (!bodies[i].is_dynamic() || !s.islands.awake[i]) return;
     bodies[i].velocity = s.solver_bodies[i].v;
     bodies[i].angular_velocity = s.solver_bodies[i].w;
   });
@@ -105,7 +105,7 @@ void store_velocities(ContactState<N>& s, std::vector<Body<N>>& bodies) {
 // Applies point k's accumulated impulses, normal and friction, to the constraint's solver bodies.
 template <int N>
 void apply_accumulated_point(ContactState<N>& s, const Constraint<N>& c, int k) {
-  const PointConstraint<N>& p = s.points[c.first + k];
+  const PointConstraint<N>& p = s.paper.points[c.first + k];
   apply_impulse(s.solver_bodies[c.a], s.solver_bodies[c.b], p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
 }
 // The same for every point of the constraint.
@@ -120,10 +120,10 @@ void apply_accumulated(ContactState<N>& s, const Constraint<N>& c) {
 template <int N>
 void keep_for_warm_start(ContactState<N>& s) {
   for_each_constraint(s, [&](const Constraint<N>& c) {
-    Pair<N>& pair = s.pairs[c.pair];
+    Pair<N>& pair = s.list.pairs[c.pair];
     keep_warm_keys(pair, c.count);
     for (int k = 0; k < c.count; ++k) {
-      const PointConstraint<N>& p = s.points[c.first + k];
+      const PointConstraint<N>& p = s.paper.points[c.first + k];
       pair.warm_normal[k] = p.normal_impulse;
       pair.warm_tangent[k] = p.tangent_impulse;
     }
@@ -134,8 +134,8 @@ void keep_for_warm_start(ContactState<N>& s) {
 template <int N>
 void keep_totals(ContactState<N>& s) {
   for_each_constraint(s, [&](const Constraint<N>& c) {
-    Pair<N>& pair = s.pairs[c.pair];
-    for (int k = 0; k < c.count; ++k) pair.normal_impulse[k] = s.points[c.first + k].normal_total;
+    Pair<N>& pair = s.list.pairs[c.pair];
+    for (int k = 0; k < c.count; ++k) pair.normal_impulse[k] = s.paper.points[c.first + k].normal_total;
   });
 }
 

@@ -43,56 +43,56 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   auto movable = [&](int i) { return moves(s, bodies, std::size_t(i)); };
   for (int i = 0; i < n; ++i) s.solver_bodies[i].level = movable(i) ? kUnreached : -1;
   // Adjacency between movable bodies (compressed rows).
-  s.adjacency_start.assign(n + 1, 0);
-  for (const Constraint<N>& c : s.constraints)
+  s.islands.adjacency_start.assign(n + 1, 0);
+  for (const Constraint<N>& c : s.graph.constraints)
     if (movable(c.a) && movable(c.b)) {
-      ++s.adjacency_start[c.a + 1];
-      ++s.adjacency_start[c.b + 1];
+      ++s.islands.adjacency_start[c.a + 1];
+      ++s.islands.adjacency_start[c.b + 1];
     }
-  for (int i = 0; i < n; ++i) s.adjacency_start[i + 1] += s.adjacency_start[i];
-  s.adjacency.resize(s.adjacency_start[n]);
-  s.bfs_queue.assign(s.adjacency_start.begin(), s.adjacency_start.end() - 1);  // fill cursors
-  for (const Constraint<N>& c : s.constraints)
+  for (int i = 0; i < n; ++i) s.islands.adjacency_start[i + 1] += s.islands.adjacency_start[i];
+  s.islands.adjacency.resize(s.islands.adjacency_start[n]);
+  s.islands.bfs_queue.assign(s.islands.adjacency_start.begin(), s.islands.adjacency_start.end() - 1);  // fill cursors
+  for (const Constraint<N>& c : s.graph.constraints)
     if (movable(c.a) && movable(c.b)) {
-      s.adjacency[s.bfs_queue[c.a]++] = c.b;
-      s.adjacency[s.bfs_queue[c.b]++] = c.a;
+      s.islands.adjacency[s.islands.bfs_queue[c.a]++] = c.b;
+      s.islands.adjacency[s.islands.bfs_queue[c.b]++] = c.a;
     }
-  s.bfs_queue.clear();
-  for (const Constraint<N>& c : s.constraints) {
+  s.islands.bfs_queue.clear();
+  for (const Constraint<N>& c : s.graph.constraints) {
     const bool ma = movable(c.a), mb = movable(c.b);
     if (ma == mb) continue;
     const int i = ma ? c.a : c.b;
     if (s.solver_bodies[i].level == kUnreached) {
       s.solver_bodies[i].level = 0;
-      s.bfs_queue.push_back(i);
+      s.islands.bfs_queue.push_back(i);
     }
   }
-  for (std::size_t head = 0; head < s.bfs_queue.size(); ++head) {
-    const int i = s.bfs_queue[head];
-    for (int e = s.adjacency_start[i]; e < s.adjacency_start[i + 1]; ++e) {
-      const int j = s.adjacency[e];
+  for (std::size_t head = 0; head < s.islands.bfs_queue.size(); ++head) {
+    const int i = s.islands.bfs_queue[head];
+    for (int e = s.islands.adjacency_start[i]; e < s.islands.adjacency_start[i + 1]; ++e) {
+      const int j = s.islands.adjacency[e];
       if (s.solver_bodies[j].level == kUnreached) {
         s.solver_bodies[j].level = s.solver_bodies[i].level + 1;
-        s.bfs_queue.push_back(j);
+        s.islands.bfs_queue.push_back(j);
       }
     }
   }
-  s.shock_order.clear();
-  for (std::size_t ci = 0; ci < s.constraints.size(); ++ci) {
-    Constraint<N>& c = s.constraints[ci];
+  s.paper.shock_order.clear();
+  for (std::size_t ci = 0; ci < s.graph.constraints.size(); ++ci) {
+    Constraint<N>& c = s.graph.constraints[ci];
     c.level = std::max(s.solver_bodies[c.a].level, s.solver_bodies[c.b].level);
-    if (c.level != kUnreached) s.shock_order.push_back(int(ci));
+    if (c.level != kUnreached) s.paper.shock_order.push_back(int(ci));
   }
   // Stable counting sort by level, which is >= -1 (std::stable_sort would allocate a buffer every step).
   int top = -1;
-  for (int ci : s.shock_order) top = std::max(top, s.constraints[ci].level);
-  auto bin = [&s](int ci) { return std::size_t(s.constraints[ci].level + 1); };
-  s.level_start.assign(std::size_t(top + 3), 0);
-  for (int ci : s.shock_order) ++s.level_start[bin(ci) + 1];
-  for (std::size_t l = 1; l < s.level_start.size(); ++l) s.level_start[l] += s.level_start[l - 1];
-  s.shock_scratch.resize(s.shock_order.size());
-  for (int ci : s.shock_order) s.shock_scratch[std::size_t(s.level_start[bin(ci)]++)] = ci;
-  s.shock_order.swap(s.shock_scratch);
+  for (int ci : s.paper.shock_order) top = std::max(top, s.graph.constraints[ci].level);
+  auto bin = [&s](int ci) { return std::size_t(s.graph.constraints[ci].level + 1); };
+  s.paper.level_start.assign(std::size_t(top + 3), 0);
+  for (int ci : s.paper.shock_order) ++s.paper.level_start[bin(ci) + 1];
+  for (std::size_t l = 1; l < s.paper.level_start.size(); ++l) s.paper.level_start[l] += s.paper.level_start[l - 1];
+  s.paper.shock_scratch.resize(s.paper.shock_order.size());
+  for (int ci : s.paper.shock_order) s.paper.shock_scratch[std::size_t(s.paper.level_start[bin(ci)]++)] = ci;
+  s.paper.shock_order.swap(s.paper.shock_scratch);
 }
 
 // Islands: dynamic bodies joined by contact points. A body is still while its centre and the rim of its
@@ -104,44 +104,44 @@ void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const Cont
   // timers restart, so that turning sleep on does not put an
   // island to sleep for the rest it had while sleeping was off.
   if (!settings.allow_sleep) {
-    std::fill(s.sleep_time.begin(), s.sleep_time.end(), 0.0);
+    std::fill(s.islands.sleep_time.begin(), s.islands.sleep_time.end(), 0.0);
     return;
   }
   const int n = int(bodies.size());
   auto movable = [&](int i) { return moves(s, bodies, std::size_t(i)); };
-  s.union_parent.resize(n);
-  for (int i = 0; i < n; ++i) s.union_parent[i] = i;
+  s.islands.union_parent.resize(n);
+  for (int i = 0; i < n; ++i) s.islands.union_parent[i] = i;
   for (int i = 0; i < n; ++i) {
     if (!movable(i)) continue;
     const Body<N>& b = bodies[i];
     // A body without a shape can never be touched awake again, so it never sleeps.
-    if (s.proxy[i] < 0) {
-      s.sleep_time[i] = 0.0;
+    if (s.list.proxy[i] < 0) {
+      s.islands.sleep_time[i] = 0.0;
       continue;
     }
-    const double radius = s.box[i].extents().norm();  // bounds the distance from the centre of mass
+    const double radius = s.list.box[i].extents().norm();  // bounds the distance from the centre of mass
     const double speed = b.velocity.norm() + b.angular_velocity.c.norm() * radius;
-    s.sleep_time[i] = speed < settings.sleep_linear_speed ? s.sleep_time[i] + h : 0.0;
+    s.islands.sleep_time[i] = speed < settings.sleep_linear_speed ? s.islands.sleep_time[i] + h : 0.0;
   }
-  for (const Constraint<N>& c : s.constraints) {
+  for (const Constraint<N>& c : s.graph.constraints) {
     const bool ma = movable(c.a), mb = movable(c.b);
     if (ma && mb) {
-      unite(s.union_parent, c.a, c.b);
+      unite(s.islands.union_parent, c.a, c.b);
     } else {
       const int other = ma ? c.b : c.a, self = ma ? c.a : c.b;
-      if (moving_kinematic(bodies[other])) s.sleep_time[self] = 0.0;
+      if (moving_kinematic(bodies[other])) s.islands.sleep_time[self] = 0.0;
     }
   }
   // Smallest sleep time per island, kept at its root.
   for (int i = 0; i < n; ++i) {
     if (!movable(i)) continue;
-    const int r = find_root(s.union_parent, i);
-    s.island[i] = r;
-    if (r != i) s.sleep_time[r] = std::min(s.sleep_time[r], s.sleep_time[i]);
+    const int r = find_root(s.islands.union_parent, i);
+    s.islands.island[i] = r;
+    if (r != i) s.islands.sleep_time[r] = std::min(s.islands.sleep_time[r], s.islands.sleep_time[i]);
   }
   for (int i = 0; i < n; ++i) {
-    if (!movable(i) || s.sleep_time[s.island[i]] < settings.time_to_sleep) continue;
-    s.awake[i] = 0;
+    if (!movable(i) || s.islands.sleep_time[s.islands.island[i]] < settings.time_to_sleep) continue;
+    s.islands.awake[i] = 0;
     bodies[i].velocity.setZero();
     bodies[i].angular_velocity = Bivector<N>{};
   }

@@ -72,12 +72,12 @@ LanePoint<N> lane_point(const PointConstraint<N>& x) {
 template <int N>
 void clear_slots(ContactState<N>& s, const WideConstraint<N>& w) {
   for (int k = w.first; k < w.first + w.count; ++k) {
-    s.wide_points[k] = WidePoint<N>{};
-    s.wide_cold[k] = WidePointCold<N>{};
-    s.wide_approach[k] = Wide<N>{};
+    s.soft.wide_points[k] = WidePoint<N>{};
+    s.soft.wide_cold[k] = WidePointCold<N>{};
+    s.soft.wide_approach[k] = Wide<N>{};
   }
   if (w.inertia < 0) return;
-  WideInertia<N>& m = s.wide_inertia[w.inertia];
+  WideInertia<N>& m = s.soft.wide_inertia[w.inertia];
   for (int k = 0; k < w.count; ++k)
     for (int i = 0; i < kBiv<N>; ++i) m.dn_a[k][i] = m.dn_b[k][i] = Wide<N>{};
 }
@@ -91,7 +91,7 @@ void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
   const SolverBody<N>* a[kLanes<N>];
   const SolverBody<N>* b[kLanes<N>];
   for (int l = 0; l < kLanes<N>; ++l) {
-    c[l] = w.constraint[l] >= 0 ? &s.constraints[w.constraint[l]] : nullptr;
+    c[l] = w.constraint[l] >= 0 ? &s.graph.constraints[w.constraint[l]] : nullptr;
     a[l] = c[l] && (w.move_a >> l & 1u) ? &s.solver_bodies[w.a[l]] : nullptr;
     b[l] = c[l] && (w.move_b >> l & 1u) ? &s.solver_bodies[w.b[l]] : nullptr;
   }
@@ -101,7 +101,7 @@ void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
   w.iso_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->iso_inv_inertia : 0.0; });
   w.iso_b = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->iso_inv_inertia : 0.0; });
   if (w.inertia < 0) return;
-  WideInertia<N>& m = s.wide_inertia[w.inertia];
+  WideInertia<N>& m = s.soft.wide_inertia[w.inertia];
   for (int i = 0; i < K * K; ++i) {
     m.a[i] = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_inertia.data()[i] : 0.0; });
     m.b[i] = make_wide<Wide<N>>([&](int l) { return b[l] ? b[l]->inv_inertia.data()[i] : 0.0; });
@@ -118,9 +118,9 @@ void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
 template <int N>
 [[gnu::always_inline]] inline void put_lane_state(ContactState<N>& s, const WideConstraint<N>& w, int k, int l,
                                                   const Vec<N>& normal, const LanePoint<N>& x) {
-  WidePoint<N>& q = s.wide_points[w.first + k];
-  WidePointCold<N>& cold = s.wide_cold[w.first + k];
-  s.wide_approach[w.first + k].set(l, x.approach);
+  WidePoint<N>& q = s.soft.wide_points[w.first + k];
+  WidePointCold<N>& cold = s.soft.wide_cold[w.first + k];
+  s.soft.wide_approach[w.first + k].set(l, x.approach);
   q.separation.set(l, x.separation);
   cold.base_separation.set(l, x.base_separation);
   q.normal_impulse.set(l, x.normal_impulse);
@@ -140,14 +140,14 @@ template <int N>
                                                    const PointMasses<N>& m, const typename PointMasses<N>::Biv& dn_a,
                                                    const typename PointMasses<N>::Biv& dn_b) {
   constexpr int K = kBiv<N>;
-  WidePoint<N>& q = s.wide_points[w.first + k];
+  WidePoint<N>& q = s.soft.wide_points[w.first + k];
   q.normal_mass.set(l, m.normal_mass);
   for (int i = 0; i < K; ++i) {
     q.jn_a[i].set(l, m.jn_a[i]);
     q.jn_b[i].set(l, m.jn_b[i]);
   }
   if (w.inertia >= 0) {
-    WideInertia<N>& in = s.wide_inertia[w.inertia];
+    WideInertia<N>& in = s.soft.wide_inertia[w.inertia];
     for (int i = 0; i < K; ++i) {
       in.dn_a[k][i].set(l, dn_a[i]);
       in.dn_b[k][i].set(l, dn_b[i]);

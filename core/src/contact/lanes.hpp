@@ -31,11 +31,11 @@ struct LaneView {
   using Inertia = WideInertiaT<N, W>;
   static const Constraint& constraint(const WideConstraint<N>& c) { return lanes_as<const Constraint>(c); }
   static Point* points(ContactState<N>& s, const WideConstraint<N>& c) {
-    return &lanes_as<Point>(s.wide_points[c.first]);
+    return &lanes_as<Point>(s.soft.wide_points[c.first]);
   }
-  static Cold* cold(ContactState<N>& s, const WideConstraint<N>& c) { return &lanes_as<Cold>(s.wide_cold[c.first]); }
+  static Cold* cold(ContactState<N>& s, const WideConstraint<N>& c) { return &lanes_as<Cold>(s.soft.wide_cold[c.first]); }
   static const Inertia* inertia(const ContactState<N>& s, const WideConstraint<N>& c) {
-    return c.inertia >= 0 ? &lanes_as<const Inertia>(s.wide_inertia[c.inertia]) : nullptr;
+    return c.inertia >= 0 ? &lanes_as<const Inertia>(s.soft.wide_inertia[c.inertia]) : nullptr;
   }
 };
 
@@ -122,13 +122,13 @@ template <class W>
   v.wb[0] += (inertia ? inertia->b[0] : c.iso_b) * tb;
 }
 
-// fn(c, points, cold, inertia, v) for each wide constraint of s.wide[begin, end), seen through LT's lanes, its
+// fn(c, points, cold, inertia, v) for each wide constraint of s.soft.wide[begin, end), seen through LT's lanes, its
 // bodies' velocities v gathered into lanes before and written back after (the passes and the warm start).
 template <int N, class LT, class F>
 [[gnu::always_inline]] inline void visit_lanes(ContactState<N>& s, int begin, int end, F&& fn) {
   using View = LaneView<N, LT>;
   for (int i = begin; i < end; ++i) {
-    const WideConstraint<N>& stored = s.wide[i];
+    const WideConstraint<N>& stored = s.soft.wide[i];
     const auto& c = View::constraint(stored);
     WideVelocities<N, typename LT::W> v;
     v.gather(s.solver_bodies, c);
@@ -386,7 +386,7 @@ struct WidePass {
     apply_wide_impulse(c, inertia, p.ra, p.rb, change, v);
   }
 
-  // The pass over s.wide[begin, end).
+  // The pass over s.soft.wide[begin, end).
   template <class LT>
   [[gnu::always_inline]] void run(ContactState<N>& s, int begin, int end) const {
     using W = typename LT::W;
@@ -430,7 +430,7 @@ struct WarmStart {
   }
 };
 
-// kernel.run over s.wide[begin, end) in 4-lane packs, compiled for AVX2 (lanes_x86.cpp; 2D and 3D).
+// kernel.run over s.soft.wide[begin, end) in 4-lane packs, compiled for AVX2 (lanes_x86.cpp; 2D and 3D).
 // (The target attribute is part of the function's identity for GCC: declared as defined.)
 #if WEDGE_X86_LANES
 template <int N, class Kernel>

@@ -1,8 +1,8 @@
 // The soft step (Catto, "Solver2D" 2024 and Box2D v3): each step is taken as sub-steps, and in each
-//   integrate_velocities   gravity and forces (World)
+//   integrate_velocities   gravity and forces (dynamics/integrate.hpp)
 //   solve (use_bias)       grabs, then contacts: soft normal constraints that push penetration out at
 //                          a spring's rate, friction in the Coulomb cone; warm started
-//   integrate_positions    (World)
+//   integrate_positions    x += h v, R <- exp(-h w/2) R
 //   relax                  the same passes without the push, so the push leaves no velocity behind
 // and once after the last sub-step restitution, from the approach speeds the step began with.
 //
@@ -29,6 +29,7 @@
 #include "contact/impulses.hpp"
 #include "contact/lane_fill.hpp"
 #include "contact/lanes.hpp"
+#include "dynamics/integrate.hpp"
 #include "wedge/dimensions.hpp"
 #include "wedge/softness.hpp"
 
@@ -39,14 +40,14 @@ namespace {
 using lanes::WarmStart;
 using lanes::WidePass;
 
-// A kernel over s.wide[begin, end): in 4-lane packs on AVX-512 or AVX2 (lanes_x86.cpp) where the lanes
+// A kernel over s.soft.wide[begin, end): in 4-lane packs on AVX-512 or AVX2 (lanes_x86.cpp) where the lanes
 // allow, else in 2-lane packs.
 template <int N, class Kernel>
 void run_lanes(ContactState<N>& s, const Kernel& kernel, int begin, int end) {
 #if WEDGE_X86_LANES
   if constexpr (kWideLanes4<N>) {
-    if (s.lanes == Lanes::Avx512) return lanes::run_avx512(s, kernel, begin, end);
-    if (s.lanes == Lanes::Avx2) return lanes::run_avx2(s, kernel, begin, end);
+    if (s.soft.lanes == Lanes::Avx512) return lanes::run_avx512(s, kernel, begin, end);
+    if (s.soft.lanes == Lanes::Avx2) return lanes::run_avx2(s, kernel, begin, end);
   }
 #endif
   kernel.template run<LaneTypes<N, 2>>(s, begin, end);
@@ -58,12 +59,12 @@ void run_lanes(ContactState<N>& s, const Kernel& kernel, int begin, int end) {
 // the uncoloured group (one constraint per wide constraint, in order) on this thread.
 template <int N, class F>
 void for_each_wide_run(ContactState<N>& s, F&& fn) {
-  const int groups = int(s.wide_start.size()) - 1;
+  const int groups = int(s.soft.wide_start.size()) - 1;
   for (int g = 0; g < groups; ++g) {
-    const int first = s.wide_start[g], last = s.wide_start[g + 1];
+    const int first = s.soft.wide_start[g], last = s.soft.wide_start[g + 1];
     if (first == last) continue;
     if (g + 1 < groups) {
-      for_shares(s.workers, s.wide, first, last, kLanes<N>, fn);
+      for_shares(s.workers, s.soft.wide, first, last, kLanes<N>, fn);
     } else {
       fn(first, last);
     }
@@ -100,7 +101,7 @@ void set_warm_start(ContactState<N>& s) {
 // pass instead (count_warm_start).
 template <int N>
 void warm_start_substep(ContactState<N>& s) {
-  if (s.substep == 0) {
+  if (s.soft.substep == 0) {
     snapshot_velocities(s);
     for_each_wide(s, WarmStart<N>{});
     set_warm_start(s);
@@ -116,14 +117,14 @@ void warm_start_substep(ContactState<N>& s) {
 template <int N>
 void restitute_lane(ContactState<N>& s, const ContactSettings& settings, const WideConstraint<N>& w, int l) {
   using Biv = typename PointMasses<N>::Biv;
-  const Constraint<N>& c = s.constraints[w.constraint[l]];
+  const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
   if (c.restitution <= 0.0) return;
   SolverBody<N>& a = s.solver_bodies[c.a];
   SolverBody<N>& b = s.solver_bodies[c.b];
-  Pair<N>& pair = s.pairs[c.pair];
+  Pair<N>& pair = s.list.pairs[c.pair];
   for (int k = 0; k < c.count; ++k) {
-    const WidePoint<N>& q = s.wide_points[w.first + k];
-    const double approach = s.wide_approach[w.first + k][l];
+    const WidePoint<N>& q = s.soft.wide_points[w.first + k];
+    const double approach = s.soft.wide_approach[w.first + k][l];
     double& impulse = pair.warm_normal[k];
     double& total = pair.normal_impulse[k];
     if (approach > -settings.restitution_threshold || total <= 0.0) continue;
@@ -148,10 +149,10 @@ void restitute_lane(ContactState<N>& s, const ContactSettings& settings, const W
 // matches them by (keep_warm_keys).
 template <int N>
 void unpack_lane(ContactState<N>& s, const WideConstraint<N>& w, int l) {
-  const Constraint<N>& c = s.constraints[w.constraint[l]];
-  Pair<N>& pair = s.pairs[c.pair];
+  const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
+  Pair<N>& pair = s.list.pairs[c.pair];
   for (int k = 0; k < c.count; ++k) {
-    const WidePoint<N>& q = s.wide_points[w.first + k];
+    const WidePoint<N>& q = s.soft.wide_points[w.first + k];
     pair.warm_normal[k] = q.normal_impulse[l];
     pair.normal_impulse[k] = q.normal_total[l];
     if constexpr (N == 2) {
@@ -169,8 +170,8 @@ void unpack_lane(ContactState<N>& s, const WideConstraint<N>& w, int l) {
 template <int N>
 void solve_contacts(ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias,
                     bool count_warm_start) {
-  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft_mass_scale * s.soft_bias_rate,
-                         s.soft_mass_scale, s.soft_impulse_scale,        use_bias,
+  const WidePass<N> pass{1.0 / h,          settings.contact_push_speed, s.soft.mass_scale * s.soft.bias_rate,
+                         s.soft.mass_scale, s.soft.impulse_scale,        use_bias,
                          count_warm_start,  !use_bias};
   for_each_wide(s, pass);
 }
@@ -183,9 +184,9 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
   static const PointConstraint<N> none{};
   for (int l = 0; l < kLanes<N>; ++l) {
     if (w.constraint[l] < 0) continue;
-    const Constraint<N>& c = s.constraints[w.constraint[l]];
+    const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
     for (int k = 0; k < w.count; ++k) {
-      const PointConstraint<N>& x = k < c.count ? s.points[c.first + k] : none;
+      const PointConstraint<N>& x = k < c.count ? s.paper.points[c.first + k] : none;
       put_lane_point(s, w, k, l, c.normal, lane_point(x), masses_of(x, c.normal), x.dn_a, x.dn_b);
     }
   }
@@ -196,13 +197,13 @@ void fill_wide(ContactState<N>& s, WideConstraint<N>& w) {
 // finish_soft_step unpacks each lane as it applies its restitution.
 template <int N>
 void unpack_wide(ContactState<N>& s) {
-  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+  s.workers.for_ranges(int(s.soft.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
     for (int i = begin; i < end; ++i)
       for (int l = 0; l < kLanes<N>; ++l) {
-        if (s.wide[i].constraint[l] < 0) continue;
-        const Constraint<N>& c = s.constraints[s.wide[i].constraint[l]];
-        keep_warm_keys(s.pairs[c.pair], c.count);
-        unpack_lane(s, s.wide[i], l);
+        if (s.soft.wide[i].constraint[l] < 0) continue;
+        const Constraint<N>& c = s.graph.constraints[s.soft.wide[i].constraint[l]];
+        keep_warm_keys(s.list.pairs[c.pair], c.count);
+        unpack_lane(s, s.soft.wide[i], l);
       }
   });
 }
@@ -212,16 +213,16 @@ void unpack_wide(ContactState<N>& s) {
 // whose constraints may share bodies, one to a wide constraint in order.
 template <int N>
 void assign_lanes(ContactState<N>& s) {
-  s.wide.clear();
-  s.wide_inertia.clear();
-  s.wide_start.clear();
-  const int groups = int(s.colour_start.size()) - 1;
+  s.soft.wide.clear();
+  s.soft.wide_inertia.clear();
+  s.soft.wide_start.clear();
+  const int groups = int(s.graph.colour_start.size()) - 1;
   int slots = 0;
   for (int g = 0; g < groups; ++g) {
-    s.wide_start.push_back(int(s.wide.size()));
-    const int first = s.colour_start[g], last = s.colour_start[g + 1];
+    s.soft.wide_start.push_back(int(s.soft.wide.size()));
+    const int first = s.graph.colour_start[g], last = s.graph.colour_start[g + 1];
     const int lanes = g + 1 < groups ? kLanes<N> : 1;
-    std::vector<int>& order = s.wide_scratch;
+    std::vector<int>& order = s.soft.wide_scratch;
     order.resize(last - first);
     if (lanes == 1) {
       for (int k = first; k < last; ++k) order[k - first] = k;
@@ -229,9 +230,9 @@ void assign_lanes(ContactState<N>& s) {
       // A counting sort, stable: most points first, in colour order among equals; no allocation.
       constexpr int kMost = kMaxManifoldPoints<N>;
       std::array<int, kMost + 2> at{};  // at[kMost - count]: where constraints of that count go
-      for (int k = first; k < last; ++k) ++at[kMost - s.constraints[k].count + 1];
+      for (int k = first; k < last; ++k) ++at[kMost - s.graph.constraints[k].count + 1];
       for (int i = 1; i < kMost + 2; ++i) at[i] += at[i - 1];
-      for (int k = first; k < last; ++k) order[at[kMost - s.constraints[k].count]++] = k;
+      for (int k = first; k < last; ++k) order[at[kMost - s.graph.constraints[k].count]++] = k;
     }
     for (int i = 0; i < int(order.size()); i += lanes) {
       WideConstraint<N> w;
@@ -239,9 +240,9 @@ void assign_lanes(ContactState<N>& s) {
       for (int l = 0; l < kLanes<N>; ++l) {
         const int k = l < lanes && i + l < int(order.size()) ? order[i + l] : -1;
         w.constraint[l] = k;
-        w.a[l] = k >= 0 ? s.constraints[k].a : -1;
-        w.b[l] = k >= 0 ? s.constraints[k].b : -1;
-        if (k >= 0) w.count = std::max(w.count, s.constraints[k].count);
+        w.a[l] = k >= 0 ? s.graph.constraints[k].a : -1;
+        w.b[l] = k >= 0 ? s.graph.constraints[k].b : -1;
+        if (k >= 0) w.count = std::max(w.count, s.graph.constraints[k].count);
         if (k >= 0 && !s.solver_bodies[w.a[l]].frozen) w.move_a |= 1u << l;
         if (k >= 0 && !s.solver_bodies[w.b[l]].frozen) w.move_b |= 1u << l;
         if (((w.move_a >> l & 1u) && !s.solver_bodies[w.a[l]].isotropic) ||
@@ -249,51 +250,110 @@ void assign_lanes(ContactState<N>& s) {
           w.inertia = 0;
       }
       if (w.inertia >= 0) {
-        w.inertia = int(s.wide_inertia.size());
-        s.wide_inertia.emplace_back();
+        w.inertia = int(s.soft.wide_inertia.size());
+        s.soft.wide_inertia.emplace_back();
       }
       slots += w.count;
-      s.wide.push_back(w);
+      s.soft.wide.push_back(w);
     }
   }
-  s.wide_start.push_back(int(s.wide.size()));
-  s.wide_points.resize(slots);
-  s.wide_cold.resize(slots);
-  s.wide_approach.resize(slots);
+  s.soft.wide_start.push_back(int(s.soft.wide.size()));
+  s.soft.wide_points.resize(slots);
+  s.soft.wide_cold.resize(slots);
+  s.soft.wide_approach.resize(slots);
 }
 
 template <int N>
 void pack_wide(ContactState<N>& s) {
   assign_lanes(s);
-  s.workers.for_ranges(int(s.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) fill_wide(s, s.wide[i]);
+  s.workers.for_ranges(int(s.soft.wide.size()), kConstraintGrain / kLanes<N>, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) fill_wide(s, s.soft.wide[i]);
   });
 }
 
+// The sub-steps' velocity integration: with neither a torque nor a gyroscopic term, a sub-step's
+// integration is v = (v + dv) decay_v and w = w decay_w with the same numbers every sub-step, worked out
+// here once (dynamics::integrate_velocity's arithmetic, so the same bits) and run by the solve sub-step
+// in its first sweep (integrate_substep_velocity). The bodies it cannot do are listed in
+// integrate_apart for integrate_velocities_apart. The same sweep notes where each body starts the step
+// (start_body_motion).
 template <int N>
 void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
-                       double h) {
-  for_each_body(s, int(bodies.size()), [&](int i) { start_body_motion(s.solver_bodies[i], bodies[i]); });
+                       double h, const dynamics::Motion<N>* motion) {
+  for_each_body(s, int(bodies.size()), [&](int i) {
+    const Body<N>& b = bodies[i];
+    SolverBody<N>& sb = s.solver_bodies[i];
+    start_body_motion(sb, b);
+    if (!motion) return;
+    const bool moving = moves(s, bodies, i);
+    sb.integrates = false;
+    sb.apart = moving && dynamics::needs_body_frame(b, *motion);  // (integrate_apart below)
+    if (!moving || sb.apart) return;
+    sb.integrates = true;
+    sb.dv = h * (motion->gravity + b.force * b.inv_mass);
+    sb.decay_v = 1.0 / (1.0 + h * b.linear_drag);
+    sb.decay_w = 1.0 / (1.0 + h * b.angular_drag);
+  });
+  s.soft.integrate_apart.clear();  // (from the flag: the bodies' torques and inertias are lines more each)
+  if (motion)
+    for (int i = 0; i < int(bodies.size()); ++i)
+      if (s.solver_bodies[i].apart) s.soft.integrate_apart.push_back(i);
   prepare_soft_contacts(s, settings, h);
+}
+
+template <int N>
+void integrate_velocities_apart(ContactState<N>& s, const std::vector<Body<N>>& bodies,
+                                const dynamics::Motion<N>& motion, double h) {
+  for (const int i : s.soft.integrate_apart) {
+    SolverBody<N>& sb = s.solver_bodies[i];
+    if (s.soft.pass_change_pending) add_pass_change(sb);  // (before the velocities move on)
+    dynamics::integrate_velocity(bodies[i], motion, h, sb.v, sb.w);
+  }
+}
+
+// The sub-steps' velocities are the solver bodies', there is no split impulse, and which bodies move is
+// the solver body's flag, read with its velocities (the body's own type and the awake flags would be
+// two more reads per body and sub-step). The solve pass's finish, body by body, joins this sweep
+// (finish_pass), and so does each body's motion since the step began, for the relax pass.
+template <int N>
+void integrate_substep_positions(ContactState<N>& s, std::vector<Body<N>>& bodies, double h, bool repair_now) {
+  const bool track = !s.graph.constraints.empty();
+  const bool finish = s.soft.solve_finish_pending;
+  s.soft.solve_finish_pending = false;
+  const auto advance = [&](int i) {
+    SolverBody<N>& sb = s.solver_bodies[i];
+    if (finish) finish_body_pass(sb);
+    if (!sb.advances) return;
+    Body<N>& b = bodies[i];
+    dynamics::advance_body(b, sb.v, sb.w, h, repair_now);
+    if (track) track_body_motion(sb, b);
+  };
+  // Up to 4D everything advance calls (exp, to_matrix, the rotor products, the repair) is inlined into
+  // the sweep (flatten); in 5D and 6D, whose rotor products are 16 and 32 terms squared, the compiler's
+  // own inlining decides.
+  if constexpr (N <= 4)
+    for_each_body(s, int(bodies.size()), [&](int i) __attribute__((flatten)) { advance(i); });
+  else
+    for_each_body(s, int(bodies.size()), advance);
 }
 template <int N>
 void prepare_soft_contacts(ContactState<N>& s, const ContactSettings& settings, double h) {
   // One spring for every contact. (Box2D v3 doubles it against static bodies; with the 8 or 16 points
   // of a 3D or 4D face that made a light box under a heavy one chatter at 0.4-0.8 m/s.)
   const Softness soft = make_softness(std::min(settings.contact_hertz, 0.125 / h), settings.contact_damping_ratio, h);
-  s.soft_bias_rate = soft.bias_rate;
-  s.soft_mass_scale = soft.mass_scale;
-  s.soft_impulse_scale = soft.impulse_scale;
-  s.substep = 0;
-  s.pass_change_pending = false;  // (the first sub-step's warm start sets warm_v afresh)
-  s.solve_finish_pending = false;
+  s.soft.bias_rate = soft.bias_rate;
+  s.soft.mass_scale = soft.mass_scale;
+  s.soft.impulse_scale = soft.impulse_scale;
+  s.soft.substep = 0;
+  s.soft.pass_change_pending = false;  // (the first sub-step's warm start sets warm_v afresh)
+  s.soft.solve_finish_pending = false;
 }
 
 // A constraint's points at the start of the soft step (prepare_point).
 template <int N>
 void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start) {
   for (int k = c.first; k < c.first + c.count; ++k) {
-    PointConstraint<N>& p = s.points[k];
+    PointConstraint<N>& p = s.paper.points[k];
     prepare_point(p, c.normal, p.gap, warm_start, p.warm_normal, p.warm_tangent);
   }
 }
@@ -304,19 +364,19 @@ void prepare_points(ContactState<N>& s, const Constraint<N>& c, bool warm_start)
 // with the tracking of the motion: together about a tenth of a 2D pyramid's step. The relax pass's
 // changes join warm_v in the next sub-step's first sweep instead (pass_change_pending): the same
 // additions in the same order, one sweep fewer, and none after the last sub-step, whose warm_v is not
-// used. World's position update does this sweep's work body by body as it moves them
+// used. integrate_substep_positions does this sweep's work body by body as it moves them
 // (solve_finish_pending, finish_body_pass), one sweep fewer again; the relax pass does it first if
 // nothing has. (The velocities stay here until the step ends: integrate_substep_velocity.)
 template <int N>
 void finish_pass(ContactState<N>& s) {
-  s.solve_finish_pending = false;
+  s.soft.solve_finish_pending = false;
   for_each_body(s, int(s.solver_bodies.size()), [&](int i) { finish_body_pass(s.solver_bodies[i]); });
 }
 
 template <int N>
 void flush_pass_change(ContactState<N>& s) {
-  if (!s.pass_change_pending) return;
-  s.pass_change_pending = false;
+  if (!s.soft.pass_change_pending) return;
+  s.soft.pass_change_pending = false;
   for_each_body(s, int(s.solver_bodies.size()), [&](int i) { add_pass_change(s.solver_bodies[i]); });
 }
 
@@ -327,11 +387,11 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   if (use_bias) {
     grabs = prepare_grabs(s, bodies, h);
     // After the first sub-step, without grabs, the velocity update joins the warm start's sweep.
-    const bool fused = !s.constraints.empty() && !grabs && s.substep > 0;
+    const bool fused = !s.graph.constraints.empty() && !grabs && s.soft.substep > 0;
     // (The last relax pass's changes join warm_v first, before the velocities move on: see
-    // finish_pass. World has added those of the bodies apart.)
-    const bool pending = s.pass_change_pending;
-    s.pass_change_pending = false;
+    // finish_pass. integrate_velocities_apart has added those of the bodies apart.)
+    const bool pending = s.soft.pass_change_pending;
+    s.soft.pass_change_pending = false;
     const auto add_pending = [pending](SolverBody<N>& b) {
       if (pending && !b.apart) add_pass_change(b);
     };
@@ -340,7 +400,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
         add_pending(s.solver_bodies[i]);
         integrate_substep_velocity(s.solver_bodies[i]);
       });
-    if (s.constraints.empty() && !grabs) return;
+    if (s.graph.constraints.empty() && !grabs) return;
     if (!fused) {
       if (grabs) warm_start_grabs(s);
       warm_start_substep(s);
@@ -359,30 +419,30 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
       });
     }
   } else {
-    if (s.solve_finish_pending) finish_pass(s);  // (World's position update does it as it moves the bodies)
+    if (s.soft.solve_finish_pending) finish_pass(s);  // (integrate_substep_positions does it as it moves the bodies)
     grabs = !s.driven.empty();
-    if (s.constraints.empty() && !grabs) return;
+    if (s.graph.constraints.empty() && !grabs) return;
     if (grabs) {
       solve_grabs(s);
       snapshot_velocities(s);
     }  // (else v0 = v since the solve pass: finish_pass)
   }
-  solve_contacts(s, settings, h, use_bias, use_bias && s.substep > 0);
+  solve_contacts(s, settings, h, use_bias, use_bias && s.soft.substep > 0);
   if (use_bias) {
-    s.solve_finish_pending = true;
-    ++s.substep;
+    s.soft.solve_finish_pending = true;
+    ++s.soft.substep;
   } else {
-    s.pass_change_pending = true;
+    s.soft.pass_change_pending = true;
   }
 }
 
 // How far each body has moved (dp) and turned (dq) since the step began, for the relax pass's
-// separations (the tests' form; World::integrate_positions tracks each body as it moves it).
+// separations (the tests' form; integrate_substep_positions tracks each body as it moves it).
 template <int N>
 void track_substep_motion(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
-  if (s.constraints.empty()) return;
+  if (s.graph.constraints.empty()) return;
   for_each_body(s, int(bodies.size()), [&](int i) {
-    if (bodies[i].type == BodyType::Static || !s.awake[i]) return;
+    if (bodies[i].type == BodyType::Static || !s.islands.awake[i]) return;
     track_body_motion(s.solver_bodies[i], bodies[i]);
   });
 }
@@ -391,13 +451,13 @@ template <int N>
 void finish_soft_step(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings) {
   // Each lane's impulses to its pair, then its restitution, in one sweep in solver order (a lane's
   // restitution reads only its own pair, which its unpacking has written).
-  if (!s.constraints.empty())
+  if (!s.graph.constraints.empty())
     for_each_wide_run(s, [&](int begin, int end) {
       for (int i = begin; i < end; ++i) {
         for (int l = 0; l < kLanes<N>; ++l)
-          if (s.wide[i].constraint[l] >= 0) {
-            unpack_lane(s, s.wide[i], l);
-            restitute_lane(s, settings, s.wide[i], l);
+          if (s.soft.wide[i].constraint[l] >= 0) {
+            unpack_lane(s, s.soft.wide[i], l);
+            restitute_lane(s, settings, s.soft.wide[i], l);
           }
       }
     });
@@ -443,7 +503,11 @@ Lanes default_lanes() {
 }
 
 #define WEDGE_INSTANTIATE(N)                                                                                   \
-  template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
+  template void prepare_soft_step<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double,   \
+                                     const dynamics::Motion<N>*);                                                 \
+  template void integrate_velocities_apart<N>(ContactState<N>&, const std::vector<Body<N>>&,                      \
+                                              const dynamics::Motion<N>&, double);                                \
+  template void integrate_substep_positions<N>(ContactState<N>&, std::vector<Body<N>>&, double, bool);          \
   template void prepare_soft_contacts<N>(ContactState<N>&, const ContactSettings&, double);                         \
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \

@@ -71,9 +71,9 @@ double contact_target(const PointConstraint<N>& p, double h) {
 
 template <int N>
 void finish_stage(ContactState<N>& s) {
-  for (const Constraint<N>& c : s.constraints)
+  for (const Constraint<N>& c : s.graph.constraints)
     for (int k = c.first; k < c.first + c.count; ++k) {
-      PointConstraint<N>& p = s.points[k];
+      PointConstraint<N>& p = s.paper.points[k];
       p.normal_total += p.normal_impulse;
       p.normal_impulse = 0.0;
       p.tangent_impulse.setZero();
@@ -94,24 +94,24 @@ void finish_stage(ContactState<N>& s) {
 // mismatch in the velocities, and in 2D heaps that pumped columns of boxes into rocking for good.
 template <int N>
 void shock_propagation(ContactState<N>& s, const ContactSettings& settings, double h) {
-  const std::size_t count = s.shock_order.size();
+  const std::size_t count = s.paper.shock_order.size();
   std::uint64_t tick = 0;  // counts constraint visits; SolverBody::moved and Constraint::shock_tick use it
   for (SolverBody<N>& b : s.solver_bodies) b.moved = 0;
   for (std::size_t begin = 0; begin < count;) {
-    const int level = s.constraints[s.shock_order[begin]].level;
+    const int level = s.graph.constraints[s.paper.shock_order[begin]].level;
     std::size_t end = begin;
-    while (end < count && s.constraints[s.shock_order[end]].level == level) ++end;
+    while (end < count && s.graph.constraints[s.paper.shock_order[end]].level == level) ++end;
     // K of the unfrozen body only. (A frozen body that cannot move anyway, static, kinematic or
     // asleep, adds nothing to the pair's K, which then stays as build_constraints left it.)
     for (std::size_t i = begin; i < end; ++i) {
-      const Constraint<N>& c = s.constraints[s.shock_order[i]];
+      const Constraint<N>& c = s.graph.constraints[s.paper.shock_order[i]];
       const SolverBody<N>& a = s.solver_bodies[c.a];
       const SolverBody<N>& b = s.solver_bodies[c.b];
       const bool fa = a.level < level && a.inv_mass > 0.0, fb = b.level < level && b.inv_mass > 0.0;
       if (!fa && !fb) continue;
       const SolverBody<N>& moving = fa ? b : a;
       for (int k = c.first; k < c.first + c.count; ++k) {
-        PointConstraint<N>& p = s.points[k];
+        PointConstraint<N>& p = s.paper.points[k];
         const Vec<N>& r = fa ? p.rb : p.ra;
         set_effective_masses(p, Mat<N>(moving.inv_mass * Mat<N>::Identity() + angular_mass_term(moving, r)),
                              c.normal);
@@ -124,7 +124,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
     for (int it = 0; it < settings.shock_iterations; ++it) {
       double largest = 0.0;
       for (std::size_t i = begin; i < end; ++i) {
-        Constraint<N>& c = s.constraints[s.shock_order[i]];
+        Constraint<N>& c = s.graph.constraints[s.paper.shock_order[i]];
         SolverBody<N>& a = s.solver_bodies[c.a];
         SolverBody<N>& b = s.solver_bodies[c.b];
         if (it > 0 && c.shock_change <= settings.shock_tolerance && a.moved <= c.shock_tick && b.moved <= c.shock_tick)
@@ -133,7 +133,7 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         b.frozen = b.level < level;
         double change = 0.0;
         for (int k = c.first; k < c.first + c.count; ++k) {
-          PointConstraint<N>& q = s.points[k];
+          PointConstraint<N>& q = s.paper.points[k];
           change = std::max(change, speed_of(q, solve_point(a, b, q, c, contact_target(q, h)).normal));
         }
         c.shock_tick = ++tick;
@@ -158,11 +158,11 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
 template <int N>
 void correct_positions(ContactState<N>& s, const ContactSettings& settings, double h) {
   for (int it = 0; it < settings.position_iterations; ++it)
-    for (const Constraint<N>& c : s.constraints) {
+    for (const Constraint<N>& c : s.graph.constraints) {
       SolverBody<N>& a = s.solver_bodies[c.a];
       SolverBody<N>& b = s.solver_bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
-        PointConstraint<N>& p = s.points[k];
+        PointConstraint<N>& p = s.paper.points[k];
         const double excess = -p.gap - settings.linear_slop;
         if (excess <= 0.0) continue;
         const double target = settings.position_correction * excess / h;
@@ -188,27 +188,27 @@ void correct_positions(ContactState<N>& s, const ContactSettings& settings, doub
 template <int N>
 void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool restitutive_only) {
   const int n = int(bodies.size());
-  s.union_parent.resize(n);
-  for (int i = 0; i < n; ++i) s.union_parent[i] = i;
+  s.islands.union_parent.resize(n);
+  for (int i = 0; i < n; ++i) s.islands.union_parent[i] = i;
   auto root = [&s](int i) {
-    while (s.union_parent[i] != i) i = s.union_parent[i] = s.union_parent[s.union_parent[i]];
+    while (s.islands.union_parent[i] != i) i = s.islands.union_parent[i] = s.islands.union_parent[s.islands.union_parent[i]];
     return i;
   };
   auto moves = [&](int i) { return s.solver_bodies[i].inv_mass > 0.0; };
-  for (const Constraint<N>& c : s.constraints)
+  for (const Constraint<N>& c : s.graph.constraints)
     if ((!restitutive_only || c.restitution > 0.0) && moves(c.a) && moves(c.b)) {
       const int ra = root(c.a), rb = root(c.b);
-      if (ra != rb) s.union_parent[std::max(ra, rb)] = std::min(ra, rb);
+      if (ra != rb) s.islands.union_parent[std::max(ra, rb)] = std::min(ra, rb);
     }
   // A group with a grabbed body has an outside source of energy (the hand): it may gain energy.
-  s.group_driven.assign(s.driven.empty() ? 0 : n, 0);
+  s.paper.group_driven.assign(s.driven.empty() ? 0 : n, 0);
   if (!restitutive_only)
     for (int i = 0; i < n && i < int(s.driven.size()); ++i)
-      if (s.driven[i]) s.group_driven[root(i)] = 1;
+      if (s.driven[i]) s.paper.group_driven[root(i)] = 1;
   // Per group root: B = sum of p0 . dv terms, C = half the energy of the changes; E(alpha) = E0 + alpha B
   // + alpha^2 C, so E(1) > E0 means B + C > 0.
-  std::vector<double>& lin = s.group_b;
-  std::vector<double>& quad = s.group_c;
+  std::vector<double>& lin = s.paper.group_b;
+  std::vector<double>& quad = s.paper.group_c;
   lin.assign(n, 0.0);
   quad.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
@@ -225,7 +225,7 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
   for (int i = 0; i < n; ++i) {
     if (!moves(i)) continue;
     const int r = root(i);
-    if (!s.group_driven.empty() && s.group_driven[r]) continue;
+    if (!s.paper.group_driven.empty() && s.paper.group_driven[r]) continue;
     const double b = lin[r], c = quad[r];
     if (!(b + c > 1e-12 * std::abs(b)) || !(c > 0.0)) continue;
     const double alpha = std::clamp(-b / c, 0.0, 1.0);
@@ -241,20 +241,20 @@ void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const 
   // Only restitutive pairs: with e = 0 the collision pass would just stop the approach, which contact
   // processing does after the velocity update anyway.
   bool any = false;
-  for (const Constraint<N>& c : s.constraints)
+  for (const Constraint<N>& c : s.graph.constraints)
     if (c.restitution > 0.0)
       for (int k = c.first; k < c.first + c.count; ++k)
-        any = any || (s.points[k].approach < 0.0 && s.points[k].gap + h * s.points[k].approach < 0.0);
+        any = any || (s.paper.points[k].approach < 0.0 && s.paper.points[k].gap + h * s.paper.points[k].approach < 0.0);
   if (!any) return;
   load_velocities(s, bodies);
   snapshot_velocities(s);
   for (int it = 0; it < settings.collision_iterations; ++it)
-    for (const Constraint<N>& c : s.constraints) {
+    for (const Constraint<N>& c : s.graph.constraints) {
       if (c.restitution <= 0.0) continue;
       SolverBody<N>& a = s.solver_bodies[c.a];
       SolverBody<N>& b = s.solver_bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
-        PointConstraint<N>& p = s.points[k];
+        PointConstraint<N>& p = s.paper.points[k];
         if (!(p.approach < 0.0 && p.gap + h * p.approach < 0.0)) continue;
         solve_point(a, b, p, c, -c.restitution * p.approach);
       }
@@ -267,17 +267,17 @@ void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const 
 // Starts every point from the impulse its features received in the last step (applied at once).
 template <int N>
 void warm_start(ContactState<N>& s) {
-  for (PointConstraint<N>& p : s.points) {
+  for (PointConstraint<N>& p : s.paper.points) {
     p.normal_impulse = p.warm_normal;
     p.tangent_impulse = p.warm_tangent;
   }
-  for (const Constraint<N>& c : s.constraints) apply_accumulated(s, c);
+  for (const Constraint<N>& c : s.graph.constraints) apply_accumulated(s, c);
 }
 
 template <int N>
 void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h) {
   const bool grabs = prepare_grabs(s, bodies, h);
-  if (s.constraints.empty() && !grabs) return;
+  if (s.graph.constraints.empty() && !grabs) return;
   load_velocities(s, bodies);
   snapshot_velocities(s);
   if (settings.warm_start) {
@@ -288,11 +288,11 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
   // by what it hits rather than pulled through it.
   for (int it = 0; it < std::max(settings.contact_iterations, grabs ? 1 : 0); ++it) {
     double largest = grabs ? solve_grabs(s) : 0.0;  // m/s
-    for (const Constraint<N>& c : s.constraints) {
+    for (const Constraint<N>& c : s.graph.constraints) {
       SolverBody<N>& a = s.solver_bodies[c.a];
       SolverBody<N>& b = s.solver_bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
-        PointConstraint<N>& q = s.points[k];
+        PointConstraint<N>& q = s.paper.points[k];
         const PointChange d = solve_point(a, b, q, c, contact_target(q, h));
         largest = std::max(largest, speed_of(q, std::max(d.normal, d.tangent)));
       }

@@ -83,7 +83,7 @@ contact::ContactState<2> constraints_with(const std::vector<int>& counts,
     c.a = bodies[k].first;
     c.b = bodies[k].second;
     c.normal = Vec<2>(0.6, 0.8);
-    s.constraints.push_back(c);
+    s.graph.constraints.push_back(c);
     for (int j = 0; j < c.count; ++j) {
       contact::PointConstraint<2> p;
       p.jn_a.setZero();
@@ -98,11 +98,11 @@ contact::ContactState<2> constraints_with(const std::vector<int>& counts,
       p.tangent_impulse = Vec<2>(id, -id);
       p.tangent_mass << id, 1.0, 2.0, id;
       p.rb = Vec<2>(-id, 3.0);
-      s.points.push_back(p);
+      s.paper.points.push_back(p);
     }
     first += c.count;
   }
-  s.colour_start = std::move(colour_start);
+  s.graph.colour_start = std::move(colour_start);
   return s;
 }
 
@@ -137,13 +137,13 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
   contact::pack_wide(s);
 
   // Colour 0 takes two wide constraints, colour 1 one, the uncoloured group two.
-  REQUIRE(s.wide_start == std::vector<int>{0, 2, 3, 5});
-  std::vector<int> seen(s.constraints.size(), 0);
+  REQUIRE(s.soft.wide_start == std::vector<int>{0, 2, 3, 5});
+  std::vector<int> seen(s.graph.constraints.size(), 0);
   int slots = 0;
-  for (int g = 0; g + 1 < int(s.wide_start.size()); ++g) {
+  for (int g = 0; g + 1 < int(s.soft.wide_start.size()); ++g) {
     int last_count = 1 << 30;
-    for (int w = s.wide_start[g]; w < s.wide_start[g + 1]; ++w) {
-      const contact::WideConstraint<2>& wc = s.wide[w];
+    for (int w = s.soft.wide_start[g]; w < s.soft.wide_start[g + 1]; ++w) {
+      const contact::WideConstraint<2>& wc = s.soft.wide[w];
       CHECK(wc.first == slots);
       slots += wc.count;
       int most = 0, used = 0;
@@ -153,15 +153,15 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
           CHECK(wc.a[l] == -1);
           CHECK(wc.b[l] == -1);
           CHECK((wc.move_a >> l & 1u) == 0u);
-          for (int j = 0; j < wc.count; ++j) CHECK(s.wide_points[wc.first + j].normal_mass[l] == 0.0);
+          for (int j = 0; j < wc.count; ++j) CHECK(s.soft.wide_points[wc.first + j].normal_mass[l] == 0.0);
           continue;
         }
         ++used;
         ++seen[k];
-        CHECK(k >= s.colour_start[g]);
-        CHECK(k < s.colour_start[g + 1]);
-        const contact::Constraint<2>& c = s.constraints[k];
-        if (g + 2 < int(s.wide_start.size())) CHECK(c.count <= last_count);  // most points first in a colour
+        CHECK(k >= s.graph.colour_start[g]);
+        CHECK(k < s.graph.colour_start[g + 1]);
+        const contact::Constraint<2>& c = s.graph.constraints[k];
+        if (g + 2 < int(s.soft.wide_start.size())) CHECK(c.count <= last_count);  // most points first in a colour
         last_count = c.count;
         most = std::max(most, c.count);
         CHECK(wc.a[l] == c.a);
@@ -172,13 +172,13 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
         CHECK(wc.inv_mass_a[l] == s.solver_bodies[c.a].inv_mass);
         CHECK(wc.iso_b[l] == s.solver_bodies[c.b].iso_inv_inertia);
         for (int j = 0; j < wc.count; ++j) {
-          const contact::WidePoint<2>& q = s.wide_points[wc.first + j];
+          const contact::WidePoint<2>& q = s.soft.wide_points[wc.first + j];
           if (j >= c.count) {
             CHECK(q.normal_mass[l] == 0.0);
             CHECK(q.friction[l] == 0.0);
             continue;
           }
-          const contact::PointConstraint<2>& p = s.points[c.first + j];
+          const contact::PointConstraint<2>& p = s.paper.points[c.first + j];
           CHECK(q.normal_mass[l] == p.normal_mass);
           CHECK(q.normal_impulse[l] == p.normal_impulse);
           CHECK(q.separation[l] == p.separation);
@@ -195,19 +195,19 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
       }
       CHECK(wc.count == most);
       // Only the uncoloured group goes one to a wide constraint.
-      const int left = s.colour_start[g + 1] - s.colour_start[g] - (w - s.wide_start[g]) * L;
-      CHECK(used == (g + 2 == int(s.wide_start.size()) ? 1 : std::min(L, left)));
+      const int left = s.graph.colour_start[g + 1] - s.graph.colour_start[g] - (w - s.soft.wide_start[g]) * L;
+      CHECK(used == (g + 2 == int(s.soft.wide_start.size()) ? 1 : std::min(L, left)));
       // A moving body that is not isotropic brings its inverse inertia matrix along.
       const bool general = (wc.a[0] == 1);
       CHECK((wc.inertia >= 0) == general);
-      if (general) CHECK(s.wide_inertia[wc.inertia].a[0][0] == 7.0);
+      if (general) CHECK(s.soft.wide_inertia[wc.inertia].a[0][0] == 7.0);
     }
   }
-  CHECK(s.wide_points.size() == std::size_t(slots));
+  CHECK(s.soft.wide_points.size() == std::size_t(slots));
   CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
   // The uncoloured group keeps its order.
-  CHECK(s.wide[3].constraint[0] == colour0 + 1);
-  CHECK(s.wide[4].constraint[0] == colour0 + 2);
+  CHECK(s.soft.wide[3].constraint[0] == colour0 + 1);
+  CHECK(s.soft.wide[4].constraint[0] == colour0 + 2);
 }
 
 TEST_CASE("wide values compute lane by lane", "[contact]") {
@@ -277,21 +277,21 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
     contact::Constraint<N> c;
     c.a = a;
     c.b = b;
-    c.first = int(s.points.size());
+    c.first = int(s.paper.points.size());
     c.count = 1 + int(rng() % kMaxManifoldPoints<N>);
     c.normal = random_vector<N>(rng).normalized();
-    c.pair = int(s.pairs.size());  // (unpack_wide keeps the impulses in it)
-    s.pairs.emplace_back();
-    s.pairs.back().manifold.count = c.count;
-    for (int k = 0; k < c.count; ++k) s.pairs.back().manifold.points[k].id = 100 + k;
+    c.pair = int(s.list.pairs.size());  // (unpack_wide keeps the impulses in it)
+    s.list.pairs.emplace_back();
+    s.list.pairs.back().manifold.count = c.count;
+    for (int k = 0; k < c.count; ++k) s.list.pairs.back().manifold.points[k].id = 100 + k;
     const contact::SolverBody<N>& sa = s.solver_bodies[a];
     const contact::SolverBody<N>& sb = s.solver_bodies[b];
     for (int k = 0; k < c.count; ++k) {
       contact::PointConstraint<N> p;
       p.ra = 0.5 * random_vector<N>(rng);
       p.rb = 0.5 * random_vector<N>(rng);
-      s.pairs.back().arm_a[k] = p.ra;  // (as build_constraint: the points' arms are the pair's)
-      s.pairs.back().arm_b[k] = p.rb;
+      s.list.pairs.back().arm_a[k] = p.ra;  // (as build_constraint: the points' arms are the pair's)
+      s.list.pairs.back().arm_b[k] = p.rb;
       contact::set_effective_masses(
           p, Mat<N>((sa.inv_mass + sb.inv_mass) * Mat<N>::Identity() + contact::angular_mass_term(sa, p.ra) +
                     contact::angular_mass_term(sb, p.rb)),
@@ -309,16 +309,16 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
       p.sliding = rng() % 3 == 0;
       const Vec<N> d = random_vector<N>(rng);
       if (p.sliding) p.slip_direction = (d - d.dot(c.normal) * c.normal).normalized();
-      s.points.push_back(p);
+      s.paper.points.push_back(p);
     }
-    s.constraints.push_back(c);
+    s.graph.constraints.push_back(c);
   };
   for (int k = 0; k < coloured; ++k) add(k % 3 == 0 ? int(k % 2) : 2 + 2 * k, 3 + 2 * k);
   for (int k = 0; k < 3; ++k) add(2, 3 + 2 * k);
-  s.colour_start = {0, coloured, coloured + 3};
-  s.soft_bias_rate = 40.0;
-  s.soft_mass_scale = 0.8;
-  s.soft_impulse_scale = 0.2;
+  s.graph.colour_start = {0, coloured, coloured + 3};
+  s.soft.bias_rate = 40.0;
+  s.soft.mass_scale = 0.8;
+  s.soft.impulse_scale = 0.2;
   return s;
 }
 
@@ -331,7 +331,7 @@ struct Unpacked {
 };
 template <int N>
 Unpacked<N> unpacked(const contact::ContactState<N>& s, const contact::Constraint<N>& c, int k) {
-  const contact::Pair<N>& pair = s.pairs[c.pair];
+  const contact::Pair<N>& pair = s.list.pairs[c.pair];
   return {pair.warm_normal[k], pair.normal_impulse[k], pair.warm_tangent[k]};
 }
 
@@ -341,23 +341,23 @@ Unpacked<N> unpacked(const contact::ContactState<N>& s, const contact::Constrain
 // base + n . ((dp_b + dq_b rb) - (dp_a + dq_a ra)).
 template <int N>
 void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings, double h, bool use_bias) {
-  for (const contact::Constraint<N>& c : s.constraints) {
+  for (const contact::Constraint<N>& c : s.graph.constraints) {
     contact::SolverBody<N>& a = s.solver_bodies[c.a];
     contact::SolverBody<N>& b = s.solver_bodies[c.b];
     const Vec<N>& n = c.normal;
     for (int k = 0; k < c.count && !use_bias; ++k) {
-      contact::PointConstraint<N>& p = s.points[c.first + k];
+      contact::PointConstraint<N>& p = s.paper.points[c.first + k];
       p.separation = p.base_separation + n.dot(Vec<N>((b.dp + b.dq * p.rb) - (a.dp + a.dq * p.ra)));
     }
     for (int k = 0; k < c.count; ++k) {
-      contact::PointConstraint<N>& p = s.points[c.first + k];
+      contact::PointConstraint<N>& p = s.paper.points[c.first + k];
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
       if (p.separation > 0.0) {
         bias = p.separation / h;
       } else if (use_bias) {
-        bias = std::max(s.soft_mass_scale * s.soft_bias_rate * p.separation, -settings.contact_push_speed);
-        mass_scale = s.soft_mass_scale;
-        impulse_scale = s.soft_impulse_scale;
+        bias = std::max(s.soft.mass_scale * s.soft.bias_rate * p.separation, -settings.contact_push_speed);
+        mass_scale = s.soft.mass_scale;
+        impulse_scale = s.soft.impulse_scale;
       }
       const double un = n.dot(b.v - a.v) + p.jn_b.dot(b.w.c) - p.jn_a.dot(a.w.c);
       const double next = std::max(
@@ -368,7 +368,7 @@ void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings
       contact::apply_normal_impulse(a, b, n, change, p.dn_a, p.dn_b);
     }
     for (int k = 0; k < c.count; ++k) {
-      contact::PointConstraint<N>& p = s.points[c.first + k];
+      contact::PointConstraint<N>& p = s.paper.points[c.first + k];
       if (!(p.friction > 0.0) || (p.normal_impulse <= 0.0 && p.tangent_impulse.isZero(0.0))) continue;
       const Vec<N> u = contact::relative_velocity(a, b, p);
       const Vec<N> next = contact::friction_update(p, n, Vec<N>(u - n.dot(u) * n));
@@ -410,13 +410,13 @@ TEMPLATE_TEST_CASE_SIG("a pass over the lanes does what the scalar pass does, po
     CHECK(lanes.solver_bodies[0].v == reference.solver_bodies[0].v);
     CHECK(lanes.solver_bodies[1].v == reference.solver_bodies[1].v);
     // (unpack_wide keeps each point's impulses, total, feature id and lever arm in its pair, slot by slot.)
-    for (const contact::Constraint<N>& c : lanes.constraints) {
-      const contact::Pair<N>& pair = lanes.pairs[c.pair];
+    for (const contact::Constraint<N>& c : lanes.graph.constraints) {
+      const contact::Pair<N>& pair = lanes.list.pairs[c.pair];
       REQUIRE(pair.warm_count == c.count);
       for (int k = 0; k < c.count; ++k) {
         INFO("trial " << trial << ", point " << c.first + k);
         const Unpacked<N> got = unpacked(lanes, c, k);
-        const contact::PointConstraint<N>& p = reference.points[c.first + k];
+        const contact::PointConstraint<N>& p = reference.paper.points[c.first + k];
         CHECK(std::abs(got.normal - p.normal_impulse) <= tol);
         CHECK(std::abs(got.total - p.normal_total) <= tol);
         CHECK((got.tangent - p.tangent_impulse).norm() <= tol);
@@ -449,19 +449,19 @@ TEMPLATE_TEST_CASE_SIG("a pass in AVX2 or AVX-512 lanes gives the bits of a pass
     contact::ContactState<N> sse2 = random_pass_state<N>(rng, 3 + trial % 11, trial % 3);
     contact::pack_wide(sse2);
     contact::ContactState<N> packed = sse2;
-    sse2.lanes = contact::Lanes::Sse2;
-    packed.lanes = wide;
+    sse2.soft.lanes = contact::Lanes::Sse2;
+    packed.soft.lanes = wide;
     const auto start = sse2.solver_bodies;
     for (const bool use_bias : {true, false, true}) {
       contact::solve_contacts(sse2, settings, 1.0 / 480.0, use_bias);
       contact::solve_contacts(packed, settings, 1.0 / 480.0, use_bias);
     }
     INFO("trial " << trial);
-    REQUIRE(sse2.wide_points.size() == packed.wide_points.size());
-    CHECK(std::memcmp(sse2.wide_points.data(), packed.wide_points.data(),
-                      sse2.wide_points.size() * sizeof(contact::WidePoint<N>)) == 0);
-    CHECK(std::memcmp(sse2.wide_cold.data(), packed.wide_cold.data(),
-                      sse2.wide_cold.size() * sizeof(contact::WidePointCold<N>)) == 0);
+    REQUIRE(sse2.soft.wide_points.size() == packed.soft.wide_points.size());
+    CHECK(std::memcmp(sse2.soft.wide_points.data(), packed.soft.wide_points.data(),
+                      sse2.soft.wide_points.size() * sizeof(contact::WidePoint<N>)) == 0);
+    CHECK(std::memcmp(sse2.soft.wide_cold.data(), packed.soft.wide_cold.data(),
+                      sse2.soft.wide_cold.size() * sizeof(contact::WidePointCold<N>)) == 0);
     for (std::size_t i = 0; i < sse2.solver_bodies.size(); ++i) {
       CHECK(std::memcmp(sse2.solver_bodies[i].v.data(), packed.solver_bodies[i].v.data(), sizeof(double) * N) == 0);
       CHECK(std::memcmp(sse2.solver_bodies[i].w.c.data(), packed.solver_bodies[i].w.c.data(),
@@ -506,9 +506,9 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
   const ContactSettings settings;
   const double h = 1.0 / 60.0 / settings.substeps;
   contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
-  REQUIRE(s.constraints.size() == 4);
+  REQUIRE(s.graph.constraints.size() == 4);
   contact::prepare_soft_step(s, bodies, settings, h);
-  const int total = s.constraints.back().first + s.constraints.back().count;
+  const int total = s.graph.constraints.back().first + s.graph.constraints.back().count;
   std::vector<double> summed(total, 0.0);  // each point's impulse, summed over the sub-steps
   for (int sub = 0; sub < settings.substeps; ++sub) {
     // gravity (the sub-steps' velocities are the solver bodies')
@@ -520,13 +520,13 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
         b.v.setZero();
         b.w = Bivector<N>{};
       }
-      for (const contact::Constraint<N>& c : s.constraints)
+      for (const contact::Constraint<N>& c : s.graph.constraints)
         for (int k = 0; k < c.count; ++k) {
           const Unpacked<N> u = unpacked(s, c, k);
           const Vec<N> j = u.normal * c.normal + u.tangent;
           contact::PointConstraint<N> lever;  // (apply_impulse reads the lever arms alone)
-          lever.ra = s.pairs[c.pair].arm_a[k];
-          lever.rb = s.pairs[c.pair].arm_b[k];
+          lever.ra = s.list.pairs[c.pair].arm_a[k];
+          lever.rb = s.list.pairs[c.pair].arm_b[k];
           contact::apply_impulse(expected[c.a], expected[c.b], lever, j);
         }
       double scale = 0.0;
@@ -543,13 +543,13 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
     contact::solve_substep(s, bodies, settings, h, false);
     contact::flush_pass_change(s);  // (gravity changes the velocities next, as World's integration would)
     contact::unpack_wide(s);
-    for (const contact::Constraint<N>& c : s.constraints)
+    for (const contact::Constraint<N>& c : s.graph.constraints)
       for (int k = 0; k < c.count; ++k) summed[c.first + k] += unpacked(s, c, k).normal;
   }
   int loaded = 0;
   double largest = 0.0;
   for (const double x : summed) largest = std::max(largest, x);
-  for (const contact::Constraint<N>& c : s.constraints)
+  for (const contact::Constraint<N>& c : s.graph.constraints)
     for (int k = 0; k < c.count; ++k) {
       INFO("point " << c.first + k);
       CHECK(std::abs(unpacked(s, c, k).total - summed[c.first + k]) <= 1e-12 * largest);

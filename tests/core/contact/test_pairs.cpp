@@ -203,14 +203,14 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
   int eligible_count = 0;  // cube pairs whose masses may be copied (recycled, isotropic bodies)
   for (int round = 0; round < 12; ++round) {
     contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
-    REQUIRE(s.constraints.size() == 3);  // ground-cube, cube-cube, ground-cuboid
-    for (const contact::Constraint<N>& c : s.constraints) {
-      const contact::Pair<N>& p = s.pairs[c.pair];
+    REQUIRE(s.graph.constraints.size() == 3);  // ground-cube, cube-cube, ground-cuboid
+    for (const contact::Constraint<N>& c : s.graph.constraints) {
+      const contact::Pair<N>& p = s.list.pairs[c.pair];
       const contact::SolverBody<N>& a = s.solver_bodies[c.a];
       const contact::SolverBody<N>& b = s.solver_bodies[c.b];
       // (Every round builds the same three pairs, so each was built in the last one from round 1.)
       const bool eligible = p.recycled && round > 0 && a.isotropic && b.isotropic;
-      CHECK(p.built == s.builds);  // (this build's number, which tells the next build where they were)
+      CHECK(p.built == s.graph.builds);  // (this build's number, which tells the next build where they were)
       CHECK(p.points_first == c.first);
       if (round > 0) CHECK(p.recycled);  // nudges below the limits
       if (c.b == 3) {
@@ -226,7 +226,7 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
                                              contact::angular_mass_term(b, p.arm_b[k])),
                                       c.normal);
         const auto jn_a = outer<N>(p.arm_a[k], c.normal).c, jn_b = outer<N>(p.arm_b[k], c.normal).c;
-        const contact::PointMasses<N>& q = s.point_masses[c.first + k];
+        const contact::PointMasses<N>& q = s.soft.point_masses[c.first + k];
         REQUIRE(q.normal_mass == e.normal_mass);
         if constexpr (N == 2) {
           const Vec<2> t(-c.normal[1], c.normal[0]);
@@ -245,7 +245,7 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
         // change, this and the bit checks above would fail). Agreement to round-off.
         const double m = round <= 5 ? 1000.0 : 2000.0;  // kg: 1000 kg/m^N times the unit cube
         for (int k = 0; k < c.count; ++k)
-          CHECK(s.point_masses[c.first + k].normal_mass == Approx(m / (1.0 + 1.5 * (N - 1))).epsilon(1e-12));
+          CHECK(s.soft.point_masses[c.first + k].normal_mass == Approx(m / (1.0 + 1.5 * (N - 1))).epsilon(1e-12));
       }
     }
     // The nudges, each well below recycle_distance (5 cm) and recycle_angle (0.2 rad).
@@ -329,11 +329,11 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
       bodies[0].rotor = wedge::exp(tilt);
     }
     contact::find_contacts(s, bodies, scene.shapes, scene.materials, settings, 1.0 / 60.0);
-    REQUIRE(s.constraints.size() == 13);  // 12 on the ground, 1 in the stack
+    REQUIRE(s.graph.constraints.size() == 13);  // 12 on the ground, 1 in the stack
     contact::ContactState<N> ref = s;
-    ref.points.clear();
-    for (const contact::Constraint<N>& c : ref.constraints) {
-      const contact::Pair<N>& p = ref.pairs[c.pair];
+    ref.paper.points.clear();
+    for (const contact::Constraint<N>& c : ref.graph.constraints) {
+      const contact::Pair<N>& p = ref.list.pairs[c.pair];
       recycled += p.recycled;
       // The constraint as its pair and its bodies' materials make it, kept from the last round or not.
       const Material& ma = scene.materials[c.a];
@@ -345,7 +345,7 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
       CHECK(c.restitution == mix_restitution(ma.restitution, mb.restitution));
       const contact::SolverBody<N>& a = ref.solver_bodies[c.a];
       const contact::SolverBody<N>& b = ref.solver_bodies[c.b];
-      REQUIRE(c.first == int(ref.points.size()));
+      REQUIRE(c.first == int(ref.paper.points.size()));
       for (int k = 0; k < c.count; ++k) {
         contact::PointConstraint<N> q;
         q.ra = p.arm_a[k];
@@ -366,30 +366,30 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
         if (q.sliding) q.slip_direction = slip / slip.norm();
         sliding += q.sliding;
         q.friction = q.sliding ? c.kinetic_friction : c.friction;
-        ref.points.push_back(q);
+        ref.paper.points.push_back(q);
       }
       contact::prepare_points(ref, c, false);
     }
-    for (contact::WideConstraint<N>& w : ref.wide) {
+    for (contact::WideConstraint<N>& w : ref.soft.wide) {
       contact::fill_wide(ref, w);
       inertias += w.inertia >= 0;
       for (int l = 0; l < contact::kLanes<N>; ++l)
-        padded += w.constraint[l] >= 0 && ref.constraints[w.constraint[l]].count < w.count;
+        padded += w.constraint[l] >= 0 && ref.graph.constraints[w.constraint[l]].count < w.count;
     }
     const auto same = [](const auto& x, const auto& y) {
       return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
     };
-    REQUIRE(same(s.wide, ref.wide));
-    CHECK(same(s.wide_points, ref.wide_points));
-    CHECK(same(s.wide_cold, ref.wide_cold));
-    CHECK(same(s.wide_approach, ref.wide_approach));
-    CHECK(same(s.wide_inertia, ref.wide_inertia));
-    kept += s.graph_kept;
+    REQUIRE(same(s.soft.wide, ref.soft.wide));
+    CHECK(same(s.soft.wide_points, ref.soft.wide_points));
+    CHECK(same(s.soft.wide_cold, ref.soft.wide_cold));
+    CHECK(same(s.soft.wide_approach, ref.soft.wide_approach));
+    CHECK(same(s.soft.wide_inertia, ref.soft.wide_inertia));
+    kept += s.graph.graph_kept;
     // Where the lanes were kept whole: a full wide constraint of isotropic bodies, all its pairs recycled.
-    for (const contact::WideConstraint<N>& w : s.wide) {
-      bool whole = s.graph_kept && w.inertia < 0;
+    for (const contact::WideConstraint<N>& w : s.soft.wide) {
+      bool whole = s.graph.graph_kept && w.inertia < 0;
       for (int l = 0; l < contact::kLanes<N>; ++l)
-        whole = whole && w.constraint[l] >= 0 && s.pairs[s.constraints[w.constraint[l]].pair].recycled;
+        whole = whole && w.constraint[l] >= 0 && s.list.pairs[s.graph.constraints[w.constraint[l]].pair].recycled;
       kept_whole += whole;
     }
     // A sub-step's passes between rounds: they write the lanes' impulses and separations, which the

@@ -1,0 +1,82 @@
+// Body integration (internal): the velocity half of a step (gravity, forces, torques, the gyroscopic
+// term, drag) and gyroscopic_step, the implicit solve of the torque-free Euler equation.
+#include "dynamics/integrate.hpp"
+
+#include <cmath>
+
+#include "linalg/fixed_size.hpp"
+#include "linalg/isotropic.hpp"
+#include "wedge/dimensions.hpp"
+
+namespace wedge {
+
+namespace {
+// J = I - s ([m]x I - [I m]x), term by term from the commutator's table (out[o] += sign a[i] b[j]):
+// ([m]x I)(o, :) = sum of sign m[i] I(j, :) over the terms of row o, and [I m]x has sign (I m)[i] at
+// (o, j). About 2 (N - 2) terms per row instead of a dense k x k x k product.
+template <int N>
+BivMat<N> gyroscopic_jacobian(const BivMat<N>& inertia, const Bivector<N>& m, const Bivector<N>& im, double s) {
+  BivMat<N> jac = inertia;
+  for (const ga::Term& t : ga::Terms<N, ga::Set::Bivector, ga::Set::Bivector, ga::Set::Bivector,
+                                     ga::Product::Commutator>::table) {
+    const double f = s * t.sign;
+    jac.row(t.out) -= (f * m[t.a]) * inertia.row(t.b);
+    jac(t.out, t.b) += f * im[t.a];
+  }
+  return jac;
+}
+}  // namespace
+
+template <int N>
+Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
+  const bool euler = method == GyroscopicMethod::ImplicitEuler;
+  const double t = euler ? 1.0 : 0.5;
+  // Both iterations use the Jacobian at the first iterate w' = w (simplified Newton): it changes by
+  // O(h |w|^2) over the step, so the second iteration still converges, at a cost of one factorisation.
+  const Bivector<N> iw = Bivector<N>::from(inertia * w.c);
+  const linalg::LuFactors<kBiv<N>> jac(gyroscopic_jacobian<N>(inertia, w, iw, t * h));
+  // First iteration, from w' = w: I (w' - w) = 0 and m = w, so g = -h w x I w. Implicit Euler stops here.
+  Bivector<N> w2 = w - Bivector<N>::from(jac.solve((commutator(w, iw) * -h).c));
+  if (!euler) {
+    const Bivector<N> m = (w + w2) * 0.5;
+    const Bivector<N> im = Bivector<N>::from(inertia * m.c);
+    const Bivector<N> g = Bivector<N>::from(inertia * (w2 - w).c) - commutator(m, im) * h;
+    w2 -= Bivector<N>::from(jac.solve(g.c));
+    const double e0 = w.c.dot(iw.c), e1 = w2.c.dot(inertia * w2.c);
+    if (e1 > e0) w2 *= std::sqrt(e0 / e1);
+  }
+  return w2;
+}
+
+namespace dynamics {
+
+template <int N>
+bool needs_body_frame(const Body<N>& b, const Motion<N>& motion) {
+  return !b.torque.c.isZero(0.0) || (motion.gyroscopic && !linalg::is_isotropic(b.inertia));
+}
+
+template <int N>
+void integrate_velocity(const Body<N>& b, const Motion<N>& motion, double h, Vec<N>& v, Bivector<N>& w) {
+  v += h * (motion.gravity + b.force * b.inv_mass);
+  if (needs_body_frame(b, motion)) {
+    const bool torque = !b.torque.c.isZero(0.0);
+    Bivector<N> wb = rotate_inverse(b.rotor, w);
+    if (torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
+    if (motion.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, motion.gyroscopic_method);
+    w = rotate(b.rotor, wb);
+  }
+  v *= 1.0 / (1.0 + h * b.linear_drag);
+  w *= 1.0 / (1.0 + h * b.angular_drag);
+}
+
+}  // namespace dynamics
+
+#define WEDGE_INSTANTIATE(N)                                                                                 \
+  template Bivector<N> gyroscopic_step<N>(const BivMat<N>&, const Bivector<N>&, double, GyroscopicMethod); \
+  template bool dynamics::needs_body_frame<N>(const Body<N>&, const dynamics::Motion<N>&);                  \
+  template void dynamics::integrate_velocity<N>(const Body<N>&, const dynamics::Motion<N>&, double, Vec<N>&, \
+                                                Bivector<N>&);
+WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
+#undef WEDGE_INSTANTIATE
+
+}  // namespace wedge
