@@ -448,7 +448,7 @@ void World<N>::integrate_positions(double h) {
   const auto advance = [&](int i) {
     Body<N>& b = bodies_[i];
     if (b.type == BodyType::Static || !contact_->islands.awake[i]) return;
-    const contact::SolverBody<N>& sb = contact_->solver_bodies[i];
+    const contact::PaperBody<N>& sb = contact_->paper.bodies[i];
     Vec<N>& v = b.velocity;
     Bivector<N>& w = b.angular_velocity;
     if (sb.wp.c.isZero(0.0)) {

@@ -298,13 +298,12 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
 // through one cache line). Shock propagation freezes bodies level by level instead.
 template <int N>
 void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool soft) {
+  s.paper.bodies.assign(soft ? 0 : bodies.size(), PaperBody<N>{});
   for_each_body(s, int(bodies.size()), [&](int i) {
     const Body<N>& b = bodies[i];
     SolverBody<N>& sb = s.solver_bodies[i];
     sb.v = b.velocity;
     sb.w = b.angular_velocity;
-    sb.vp.setZero();
-    sb.wp = Bivector<N>{};
     sb.frozen = soft && !moves(s, bodies, i);
     sb.advances = b.type != BodyType::Static && s.islands.awake[i];
     if (moves(s, bodies, i)) {

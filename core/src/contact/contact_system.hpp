@@ -116,7 +116,7 @@ inline void keep_warm_keys(Pair<N>& pair, int count) {
   }
 }
 
-// A body as the solver sees it: velocities (and split-impulse pseudo velocities) and inverse mass.
+// A body as the solvers see it: velocities and inverse mass (the paper's solver keeps the rest in PaperBody).
 // What the soft step's sweeps over the bodies read comes first, packed together (a tall pyramid's
 // bodies do not fit the cache): the passes gather v and w, the sweeps between them these and the warm
 // start, the snapshot and the velocity integration.
@@ -138,10 +138,7 @@ struct alignas(64) SolverBody {
   // (prepare_soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
   Vec<N> dv = Vec<N>::Zero();
   double decay_v = 1.0, decay_w = 1.0;
-  // Then what the position update reads and writes of it (integrate_substep_positions, and World's
-  // integrate_positions for the paper's solver).
-  Vec<N> vp = Vec<N>::Zero();  // pseudo velocity: moves the position this step, then is dropped
-  Bivector<N> wp{};
+  // Then what the position update reads and writes of it (integrate_substep_positions).
   // Soft step: where the body was when the step began, and how far it has moved and turned since
   // (the turn as a matrix, dq = R R0^-1), so the sub-steps see each contact's current separation.
   Vec<N> x0 = Vec<N>::Zero();
@@ -155,8 +152,15 @@ struct alignas(64) SolverBody {
   bool isotropic = false;
   double iso_inv_inertia = 0.0;
   BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
-  int level = 0;                               // contact-graph level (shock propagation)
-  std::uint64_t moved = 0;  // shock propagation: the visit that last changed its velocity beyond tolerance
+};
+
+// What the paper's solver keeps of a body beside its SolverBody (PaperSolver::bodies).
+template <int N>
+struct PaperBody {
+  Vec<N> vp = Vec<N>::Zero();  // pseudo velocity (split impulse): moves the position this step, then is dropped
+  Bivector<N> wp{};
+  int level = 0;               // contact-graph level (shock propagation)
+  std::uint64_t moved = 0;     // shock propagation: the visit that last changed its velocity beyond tolerance
 };
 
 // One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
@@ -343,6 +347,7 @@ struct ConstraintGraph {
 // step's lanes from them too, fill_wide), shock propagation's order, the collision stage's energy terms.
 template <int N>
 struct PaperSolver {
+  std::vector<PaperBody<N>> bodies;  // per body, set afresh by load_solver_bodies (build.cpp)
   std::vector<PointConstraint<N>> points;
   std::vector<int> shock_order;                 // constraints sorted by level (stable)
   std::vector<int> level_start, shock_scratch;  // its counting sort's buffers

@@ -41,7 +41,7 @@ template <int N>
 void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   const int n = int(bodies.size());
   auto movable = [&](int i) { return moves(s, bodies, std::size_t(i)); };
-  for (int i = 0; i < n; ++i) s.solver_bodies[i].level = movable(i) ? kUnreached : -1;
+  for (int i = 0; i < n; ++i) s.paper.bodies[i].level = movable(i) ? kUnreached : -1;
   // Adjacency between movable bodies (compressed rows).
   s.islands.adjacency_start.assign(n + 1, 0);
   for (const Constraint<N>& c : s.graph.constraints)
@@ -62,8 +62,8 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
     const bool ma = movable(c.a), mb = movable(c.b);
     if (ma == mb) continue;
     const int i = ma ? c.a : c.b;
-    if (s.solver_bodies[i].level == kUnreached) {
-      s.solver_bodies[i].level = 0;
+    if (s.paper.bodies[i].level == kUnreached) {
+      s.paper.bodies[i].level = 0;
       s.islands.bfs_queue.push_back(i);
     }
   }
@@ -71,8 +71,8 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
     const int i = s.islands.bfs_queue[head];
     for (int e = s.islands.adjacency_start[i]; e < s.islands.adjacency_start[i + 1]; ++e) {
       const int j = s.islands.adjacency[e];
-      if (s.solver_bodies[j].level == kUnreached) {
-        s.solver_bodies[j].level = s.solver_bodies[i].level + 1;
+      if (s.paper.bodies[j].level == kUnreached) {
+        s.paper.bodies[j].level = s.paper.bodies[i].level + 1;
         s.islands.bfs_queue.push_back(j);
       }
     }
@@ -80,7 +80,7 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   s.paper.shock_order.clear();
   for (std::size_t ci = 0; ci < s.graph.constraints.size(); ++ci) {
     Constraint<N>& c = s.graph.constraints[ci];
-    c.level = std::max(s.solver_bodies[c.a].level, s.solver_bodies[c.b].level);
+    c.level = std::max(s.paper.bodies[c.a].level, s.paper.bodies[c.b].level);
     if (c.level != kUnreached) s.paper.shock_order.push_back(int(ci));
   }
   // Stable counting sort by level, which is >= -1 (std::stable_sort would allocate a buffer every step).

@@ -95,8 +95,8 @@ void finish_stage(ContactState<N>& s) {
 template <int N>
 void shock_propagation(ContactState<N>& s, const ContactSettings& settings, double h) {
   const std::size_t count = s.paper.shock_order.size();
-  std::uint64_t tick = 0;  // counts constraint visits; SolverBody::moved and Constraint::shock_tick use it
-  for (SolverBody<N>& b : s.solver_bodies) b.moved = 0;
+  std::uint64_t tick = 0;  // counts constraint visits; PaperBody::moved and Constraint::shock_tick use it
+  for (PaperBody<N>& b : s.paper.bodies) b.moved = 0;
   for (std::size_t begin = 0; begin < count;) {
     const int level = s.graph.constraints[s.paper.shock_order[begin]].level;
     std::size_t end = begin;
@@ -107,7 +107,8 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
       const Constraint<N>& c = s.graph.constraints[s.paper.shock_order[i]];
       const SolverBody<N>& a = s.solver_bodies[c.a];
       const SolverBody<N>& b = s.solver_bodies[c.b];
-      const bool fa = a.level < level && a.inv_mass > 0.0, fb = b.level < level && b.inv_mass > 0.0;
+      const bool fa = s.paper.bodies[c.a].level < level && a.inv_mass > 0.0,
+                 fb = s.paper.bodies[c.b].level < level && b.inv_mass > 0.0;
       if (!fa && !fb) continue;
       const SolverBody<N>& moving = fa ? b : a;
       for (int k = c.first; k < c.first + c.count; ++k) {
@@ -127,10 +128,13 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         Constraint<N>& c = s.graph.constraints[s.paper.shock_order[i]];
         SolverBody<N>& a = s.solver_bodies[c.a];
         SolverBody<N>& b = s.solver_bodies[c.b];
-        if (it > 0 && c.shock_change <= settings.shock_tolerance && a.moved <= c.shock_tick && b.moved <= c.shock_tick)
+        PaperBody<N>& pa = s.paper.bodies[c.a];
+        PaperBody<N>& pb = s.paper.bodies[c.b];
+        if (it > 0 && c.shock_change <= settings.shock_tolerance && pa.moved <= c.shock_tick &&
+            pb.moved <= c.shock_tick)
           continue;
-        a.frozen = a.level < level;
-        b.frozen = b.level < level;
+        a.frozen = pa.level < level;
+        b.frozen = pb.level < level;
         double change = 0.0;
         for (int k = c.first; k < c.first + c.count; ++k) {
           PointConstraint<N>& q = s.paper.points[k];
@@ -139,8 +143,8 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         c.shock_tick = ++tick;
         c.shock_change = change;
         if (change > settings.shock_tolerance) {
-          if (!a.frozen) a.moved = tick;
-          if (!b.frozen) b.moved = tick;
+          if (!a.frozen) pa.moved = tick;
+          if (!b.frozen) pb.moved = tick;
         }
         a.frozen = b.frozen = false;
         largest = std::max(largest, change);
@@ -159,21 +163,23 @@ template <int N>
 void correct_positions(ContactState<N>& s, const ContactSettings& settings, double h) {
   for (int it = 0; it < settings.position_iterations; ++it)
     for (const Constraint<N>& c : s.graph.constraints) {
-      SolverBody<N>& a = s.solver_bodies[c.a];
-      SolverBody<N>& b = s.solver_bodies[c.b];
+      const SolverBody<N>& a = s.solver_bodies[c.a];
+      const SolverBody<N>& b = s.solver_bodies[c.b];
+      PaperBody<N>& pa = s.paper.bodies[c.a];
+      PaperBody<N>& pb = s.paper.bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.paper.points[k];
         const double excess = -p.gap - settings.linear_slop;
         if (excess <= 0.0) continue;
         const double target = settings.position_correction * excess / h;
-        const double un = c.normal.dot(b.vp + dot<N>(p.rb, b.wp) - a.vp - dot<N>(p.ra, a.wp));
+        const double un = c.normal.dot(pb.vp + dot<N>(p.rb, pb.wp) - pa.vp - dot<N>(p.ra, pa.wp));
         const double next = std::max(p.pseudo + p.pseudo_mass * (target - un), 0.0);
         const Vec<N> j = (next - p.pseudo) * c.normal;
         p.pseudo = next;
-        a.vp -= a.inv_mass * j;
-        a.wp.c -= angular_change(a, p.ra, j);
-        b.vp += b.inv_mass * j;
-        b.wp.c += angular_change(b, p.rb, j);
+        pa.vp -= a.inv_mass * j;
+        pa.wp.c -= angular_change(a, p.ra, j);
+        pb.vp += b.inv_mass * j;
+        pb.wp.c += angular_change(b, p.rb, j);
       }
     }
 }
