@@ -439,36 +439,12 @@ void World<N>::integrate_velocities(double h) {
   });
 }
 
-// Position half, with the new velocities plus the split-impulse pseudo velocities of position
-// correction: x += h v, R <- exp(-h w/2) R (exact for constant w over the step), and every
-// rotor_repair_interval steps R is rebuilt from unit-vector factors (dynamics::advance_body).
+// Position half: the paper's solver moves the bodies with their velocities and its pseudo velocities
+// (contact::integrate_positions).
 template <int N>
 void World<N>::integrate_positions(double h) {
   const bool repair_now = (steps_ + 1) % settings_.rotor_repair_interval == 0;
-  const auto advance = [&](int i) {
-    Body<N>& b = bodies_[i];
-    if (b.type == BodyType::Static || !contact_->islands.awake[i]) return;
-    const contact::PaperBody<N>& sb = contact_->paper.bodies[i];
-    Vec<N>& v = b.velocity;
-    Bivector<N>& w = b.angular_velocity;
-    if (sb.wp.c.isZero(0.0)) {
-      dynamics::advance_body(b, Vec<N>(v + sb.vp), w, h, repair_now);
-      return;
-    }
-    // The split impulse turns the body further than its spin does. Turning the angular velocity along
-    // by that extra turn Q keeps it the same in the body frame, so the correction moves the body without
-    // changing its kinetic energy (1/2 w . I' w would otherwise change with I').
-    b.center += h * (v + sb.vp);
-    const Rotor<N> spun = exp<N>(w * (-0.5 * h)) * b.rotor;
-    const Rotor<N> next = exp<N>((w + sb.wp) * (-0.5 * h)) * b.rotor;
-    w = rotate(next * reverse(spun), w);
-    b.rotor = repair_now ? repair(next) : next;
-  };
-  // (Up to 4D everything advance calls is inlined into the sweep, as in the soft step's.)
-  if constexpr (N <= 4)
-    contact::for_each_body(*contact_, int(bodies_.size()), [&](int i) __attribute__((flatten)) { advance(i); });
-  else
-    contact::for_each_body(*contact_, int(bodies_.size()), advance);
+  contact::integrate_positions(*contact_, bodies_, h, repair_now);
 }
 
 template <int N>

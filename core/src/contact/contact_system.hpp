@@ -7,12 +7,14 @@
 //     load_solver_bodies build.cpp          the solver's copies of the bodies
 //     build_constraints  build.cpp          the constraints' points (update_constraint_graph in
 //                                           constraint_graph.cpp places them: seeds, colours, lanes)
-//   process_collisions solver.cpp     restitution on predicted positions (before the velocity update)
-//   process_contacts   solver.cpp     restitution 0, shock propagation, split-impulse position correction
-//   solve_substep ...  soft_step.cpp  the soft step's stages (below)
-//   solve_continuous   continuous.cpp a fast body put back where it would first reach a static shape
-//   update_islands     islands.cpp    islands of touching bodies, sleeping, the contact graph's levels
-//   report_events      events.cpp     began/stopped touching, sorted by pair
+//   process_collisions  solver.cpp      restitution on predicted positions (before the velocity update)
+//   process_contacts    solver.cpp      restitution 0, shock propagation, split-impulse position correction
+//   integrate_positions solver.cpp      the paper's position update, with its pseudo velocities
+//   prepare_soft_step,  soft_step.cpp   the soft step's stages instead of the three above (below)
+//     solve_substep ...
+//   solve_continuous    continuous.cpp  a fast body put back where it would first reach a static shape
+//   update_islands      islands.cpp     islands of touching bodies, sleeping, the contact graph's levels
+//   report_events       events.cpp      began/stopped touching, sorted by pair
 // Grabs (grab.cpp) are solved inside process_contacts, before the contacts in every pass.
 // Everything runs in creation order of the bodies and sorted order of the pairs (the soft step's
 // constraints in colour order, itself a function of the pair order), so a step is a function of the
@@ -524,6 +526,10 @@ void process_collisions(ContactState<N>& state, std::vector<Body<N>>& bodies, co
 template <int N>
 void process_contacts(ContactState<N>& state, std::vector<Body<N>>& bodies, const ContactSettings& settings,
                       double h);
+// The paper's position update: every awake body moved by its velocities and the pseudo velocities of
+// process_contacts' position correction over h (and, when repair_now, its rotor repaired).
+template <int N>
+void integrate_positions(ContactState<N>& state, std::vector<Body<N>>& bodies, double h, bool repair_now);
 // grab.cpp: derive the step's grab data (and `driven`), apply last step's impulses, one pass. The pass
 // returns the largest velocity change it made (m/s), for the solver's early exit.
 template <int N>
