@@ -82,7 +82,7 @@ int last_first(const ContactState<N>& s, const Pair<N>& p) {
 }
 // The bodies' 1/m and isotropic 1/I, which a recycled pair's masses were formed with (Pair::mass_key).
 template <int N>
-std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
+std::array<double, 4> mass_key(const BodyMass<N>& a, const BodyMass<N>& b) {
   return {a.inv_mass, a.iso_inv_inertia, b.inv_mass, b.iso_inv_inertia};
 }
 // Where in the last step's masses pair p's points may take theirs from, or -1: a recycled manifold
@@ -90,7 +90,7 @@ std::array<double, 4> mass_key(const SolverBody<N>& a, const SolverBody<N>& b) {
 // and Jacobian rows are then those of the last step, to the bit (the same function of the same
 // numbers): copied rather than formed again.
 template <int N>
-int recycled_masses(const ContactState<N>& s, const Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b) {
+int recycled_masses(const ContactState<N>& s, const Pair<N>& p, const BodyMass<N>& a, const BodyMass<N>& b) {
   if (!(s.graph.built_soft && p.recycled && a.isotropic && b.isotropic && mass_key(a, b) == p.mass_key)) return -1;
   return last_first(s, p);
 }
@@ -140,14 +140,14 @@ template <int N>
 
 // K = delta/m + [r]_*^T I^-1 [r]_* of the point's two bodies (paper section 6), with lever arms ra, rb.
 template <int N>
-Mat<N> point_k(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& ra, const Vec<N>& rb) {
+Mat<N> point_k(const BodyMass<N>& a, const BodyMass<N>& b, const Vec<N>& ra, const Vec<N>& rb) {
   return (a.inv_mass + b.inv_mass) * Mat<N>::Identity() + angular_mass_term(a, ra) + angular_mass_term(b, rb);
 }
 
 // What the constraint of pair p leaves in it: where its points are, how fast they approached (events),
 // and the masses' key.
 template <int N>
-void note_constraint(Pair<N>& p, const SolverBody<N>& a, const SolverBody<N>& b, int index, int first,
+void note_constraint(Pair<N>& p, const BodyMass<N>& a, const BodyMass<N>& b, int index, int first,
                      double approach_speed, std::uint64_t builds) {
   p.constraint = index;
   p.approach_speed = approach_speed;
@@ -165,8 +165,8 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
                       double slip_speed, double match_distance, int pi, int index, int first) {
   Pair<N>& p = s.list.pairs[pi];
   const Constraint<N> c = make_constraint(s, materials, pi, first);
-  const SolverBody<N>& sa = s.solver_bodies[c.a];
-  const SolverBody<N>& sb = s.solver_bodies[c.b];
+  const BodyMass<N>& sa = s.masses[c.a];
+  const BodyMass<N>& sb = s.masses[c.b];
   std::array<int, kMaxManifoldPoints<N>> match;
   warm_matches(p, bodies[c.a].center, match_distance, match);
   double approach_speed = 0.0;
@@ -193,7 +193,7 @@ void build_constraint(ContactState<N>& s, const std::vector<Body<N>>& bodies, co
 
 // The masses of a soft step point with lever arms ra, rb, formed (build_constraint's formulas).
 template <int N>
-PointMasses<N> form_point_masses(const SolverBody<N>& a, const SolverBody<N>& b, const Vec<N>& ra, const Vec<N>& rb,
+PointMasses<N> form_point_masses(const BodyMass<N>& a, const BodyMass<N>& b, const Vec<N>& ra, const Vec<N>& rb,
                                  const Vec<N>& normal) {
   struct {
     Vec<N> kn;
@@ -247,7 +247,7 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     if (w.constraint[l] < 0) continue;
     const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
     const Pair<N>& p = s.list.pairs[c.pair];
-    const int first = recycled_masses(s, p, s.solver_bodies[c.a], s.solver_bodies[c.b]);
+    const int first = recycled_masses(s, p, s.masses[c.a], s.masses[c.b]);
     if (first >= 0) last[l] = &previous[first];
     header_kept = header_kept && last[l];
   }
@@ -258,8 +258,8 @@ void build_wide(ContactState<N>& s, const std::vector<Body<N>>& bodies, const st
     if (w.constraint[l] < 0) continue;
     const Constraint<N>& c = s.graph.constraints[w.constraint[l]];
     Pair<N>& p = s.list.pairs[c.pair];
-    const SolverBody<N>& sa = s.solver_bodies[c.a];
-    const SolverBody<N>& sb = s.solver_bodies[c.b];
+    const BodyMass<N>& sa = s.masses[c.a];
+    const BodyMass<N>& sb = s.masses[c.b];
     std::array<int, kMaxManifoldPoints<N>> match;
     warm_matches(p, bodies[c.a].center, settings.contact_margin, match);
     keep_warm_keys(p, c.count);  // (matched: the next step's keys now)
@@ -306,19 +306,20 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
     sb.w = b.angular_velocity;
     sb.frozen = soft && !moves(s, bodies, i);
     sb.advances = b.type != BodyType::Static && s.islands.awake[i];
+    BodyMass<N>& m = s.masses[i];
     if (moves(s, bodies, i)) {
-      sb.inv_mass = b.inv_mass;
-      sb.isotropic = linalg::is_isotropic(b.inv_inertia);
-      sb.iso_inv_inertia = b.inv_inertia(0, 0);
-      if (sb.isotropic)
-        sb.inv_inertia = sb.iso_inv_inertia * BivMat<N>::Identity();  // (turning it changes nothing)
+      m.inv_mass = b.inv_mass;
+      m.isotropic = linalg::is_isotropic(b.inv_inertia);
+      m.iso_inv_inertia = b.inv_inertia(0, 0);
+      if (m.isotropic)
+        m.inv_inertia = m.iso_inv_inertia * BivMat<N>::Identity();  // (turning it changes nothing)
       else
-        sb.inv_inertia = b.world_inv_inertia();
+        m.inv_inertia = b.world_inv_inertia();
     } else {
-      sb.inv_mass = 0.0;
-      sb.isotropic = true;
-      sb.iso_inv_inertia = 0.0;
-      sb.inv_inertia.setZero();
+      m.inv_mass = 0.0;
+      m.isotropic = true;
+      m.iso_inv_inertia = 0.0;
+      m.inv_inertia.setZero();
     }
   });
 }

@@ -85,8 +85,8 @@ void update_constraint_graph(ContactState<N>& s, const std::vector<Body<N>>& bod
     }
     const bool da = moves(s, bodies, p.a), db = moves(s, bodies, p.b);
     if (!da && !db) continue;
-    s.graph.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db, !da || s.solver_bodies[p.a].isotropic,
-                       !db || s.solver_bodies[p.b].isotropic});
+    s.graph.seeds.push_back({int(pi), p.a, p.b, p.manifold.count, da, db, !da || s.masses[p.a].isotropic,
+                       !db || s.masses[p.b].isotropic});
   }
   // The same seeds as the last soft step's: the same colours and lanes, and the constraints' places.
   static_assert(std::has_unique_object_representations_v<typename ConstraintGraph<N>::Seed>);  // (memcmp is ==)

@@ -118,18 +118,19 @@ inline void keep_warm_keys(Pair<N>& pair, int count) {
   }
 }
 
-// A body as the solvers see it: velocities and inverse mass (the paper's solver keeps the rest in PaperBody).
-// What the soft step's sweeps over the bodies read comes first, packed together (a tall pyramid's
-// bodies do not fit the cache): the passes gather v and w, the sweeps between them these and the warm
+// A body's velocities as the solvers see them, and for the soft step what its sub-steps integrate and
+// how far it has moved: all that the soft step's sweeps over the bodies touch, and nothing else (its
+// masses are in BodyMass, the paper's solver's pseudo velocities and levels in PaperBody). What the
+// sweeps read most comes first: the passes gather v and w, the sweeps between them these and the warm
 // start, the snapshot and the velocity integration.
 template <int N>
 struct alignas(64) SolverBody {
   Vec<N> v = Vec<N>::Zero();
   Bivector<N> w{};
   bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
-  bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else World does it)
+  bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else it is apart)
   bool advances = false;    // not static and awake: the soft step's position update moves it
-  bool apart = false;       // soft step: moves, and World integrates its velocities itself (integrate_apart)
+  bool apart = false;       // soft step: moves, and integrate_velocities_apart integrates its velocities
   // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
   // next sub-step (soft_step.cpp, warm_start_substep).
   Vec<N> warm_v = Vec<N>::Zero();
@@ -147,6 +148,13 @@ struct alignas(64) SolverBody {
   Mat<N> r0_inverse = Mat<N>::Identity();
   Vec<N> dp = Vec<N>::Zero();
   Mat<N> dq = Mat<N>::Identity();
+};
+
+// A body's inverse mass and inertia in this step (load_solver_bodies, build.cpp), 0 for one that does
+// not move: what forming effective masses and applying impulses outside the soft step's lanes read
+// (ContactState::masses).
+template <int N>
+struct BodyMass {
   double inv_mass = 0.0;
   // The inverse inertia is iso_inv_inertia times the identity in every frame (a body whose inertia is
   // the same about every plane: a cube, a ball). The impulse passes then scale r ^ j instead of
@@ -261,6 +269,7 @@ struct GrabConstraint {
   std::uint32_t generation = 0;
   bool live = false;
   bool active = false;                       // live, on an awake dynamic body, in this step
+  double inv_mass = 0.0;                     // 1/kg, the body's in this step
   Vec<N> r = Vec<N>::Zero();                 // m, grab point from the centre of mass (world)
   Eigen::Matrix<double, kBiv<N>, N> w = Eigen::Matrix<double, kBiv<N>, N>::Zero();  // I'^-1 [r]_*
   Mat<N> mass = Mat<N>::Zero();              // K^-1
@@ -422,6 +431,7 @@ struct ContactState {
   Islands islands;
   Events<N> events;
   std::vector<SolverBody<N>> solver_bodies;  // per body (build.cpp loads them)
+  std::vector<BodyMass<N>> masses;           // per body (likewise)
   std::vector<GrabConstraint<N>> grabs;      // slots, solved in slot order (grab.cpp)
   std::vector<char> driven;                  // per body: held by an active grab this step
   parallel::Workers workers;                 // WorldSettings::workers, set by World::step
@@ -659,7 +669,7 @@ inline bool moving_kinematic(const Body<N>& b) {
 
 // I^-1 t for a bivector t (world frame): a scale for an isotropic body.
 template <int N>
-inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const SolverBody<N>& b,
+inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const BodyMass<N>& b,
                                                                const Eigen::Matrix<double, kBiv<N>, 1>& t) {
   if (b.isotropic) return b.iso_inv_inertia * t;
   return b.inv_inertia * t;
@@ -668,14 +678,14 @@ inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const SolverBody<
 // rather than kept per point as the k x N matrix I^-1 [r]_*, which would be most of a point's size;
 // for an isotropic body it is a scale.
 template <int N>
-inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const SolverBody<N>& b, const Vec<N>& r, const Vec<N>& j) {
+inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const BodyMass<N>& b, const Vec<N>& r, const Vec<N>& j) {
   return inverse_inertia_times(b, outer<N>(r, j).c);
 }
 
 // The body's part of K = delta/m + [r]_*^T I^-1 [r]_* without the 1/m: [r]_*^T I^-1 [r]_*, which for an
 // isotropic body is s (|r|^2 1 - r r^T) (r . (r ^ a) = |r|^2 a - (r . a) r).
 template <int N>
-inline Mat<N> angular_mass_term(const SolverBody<N>& b, const Vec<N>& r) {
+inline Mat<N> angular_mass_term(const BodyMass<N>& b, const Vec<N>& r) {
   if (b.isotropic) return b.iso_inv_inertia * (r.squaredNorm() * Mat<N>::Identity() - r * r.transpose());
   const WedgeMat<N> jr = wedge_matrix<N>(r);
   return jr.transpose() * (b.inv_inertia * jr);

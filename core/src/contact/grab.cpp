@@ -22,7 +22,8 @@ bool prepare_grabs(ContactState<N>& s, const std::vector<Body<N>>& bodies, doubl
     g.active = g.live && moves(s, bodies, i);
     if (!g.active) continue;
     const Body<N>& b = bodies[i];
-    const SolverBody<N>& sb = s.solver_bodies[i];
+    const BodyMass<N>& sb = s.masses[i];
+    g.inv_mass = sb.inv_mass;
     g.r = rotate(b.rotor, Vec<N>(g.def.local_point - b.local_center));
     const WedgeMat<N> jr = wedge_matrix<N>(g.r);
     g.w = sb.inv_inertia * jr;
@@ -48,7 +49,7 @@ void warm_start_grabs(ContactState<N>& s) {
   for (GrabConstraint<N>& g : s.grabs) {
     if (!g.active) continue;
     SolverBody<N>& b = s.solver_bodies[g.def.body.index];
-    b.v += b.inv_mass * g.impulse;
+    b.v += g.inv_mass * g.impulse;
     b.w.c += g.w * g.impulse;
   }
 }
@@ -65,9 +66,9 @@ double solve_grabs(ContactState<N>& s) {
     const double norm = g.impulse.norm();
     if (norm > g.max_impulse) g.impulse *= g.max_impulse / norm;
     const Vec<N> j = g.impulse - old;
-    b.v += b.inv_mass * j;
+    b.v += g.inv_mass * j;
     b.w.c += g.w * j;
-    largest = std::max(largest, j.norm() * b.inv_mass);
+    largest = std::max(largest, j.norm() * g.inv_mass);
   }
   return largest;
 }

@@ -9,28 +9,30 @@
 
 namespace wedge::contact {
 
+// The impulse j at the point (lever arms p.ra, p.rb): -j to a, +j to b, each with its masses ma, mb.
 template <int N>
-void apply_impulse(SolverBody<N>& a, SolverBody<N>& b, const PointConstraint<N>& p, const Vec<N>& j) {
+void apply_impulse(SolverBody<N>& a, const BodyMass<N>& ma, SolverBody<N>& b, const BodyMass<N>& mb,
+                   const PointConstraint<N>& p, const Vec<N>& j) {
   if (!a.frozen) {
-    a.v -= a.inv_mass * j;
-    a.w.c -= angular_change(a, p.ra, j);
+    a.v -= ma.inv_mass * j;
+    a.w.c -= angular_change(ma, p.ra, j);
   }
   if (!b.frozen) {
-    b.v += b.inv_mass * j;
-    b.w.c += angular_change(b, p.rb, j);
+    b.v += mb.inv_mass * j;
+    b.w.c += angular_change(mb, p.rb, j);
   }
 }
 
 // An impulse of `change` along the normal n at a point whose I^-1 jn are dn_a and dn_b.
 template <int N, class Biv>
-inline void apply_normal_impulse(SolverBody<N>& a, SolverBody<N>& b, const Vec<N>& n, double change, const Biv& dn_a,
-                                 const Biv& dn_b) {
+inline void apply_normal_impulse(SolverBody<N>& a, const BodyMass<N>& ma, SolverBody<N>& b, const BodyMass<N>& mb,
+                                 const Vec<N>& n, double change, const Biv& dn_a, const Biv& dn_b) {
   if (!a.frozen) {
-    a.v -= (a.inv_mass * change) * n;
+    a.v -= (ma.inv_mass * change) * n;
     a.w.c -= change * dn_a;
   }
   if (!b.frozen) {
-    b.v += (b.inv_mass * change) * n;
+    b.v += (mb.inv_mass * change) * n;
     b.w.c += change * dn_b;
   }
 }
@@ -106,7 +108,8 @@ void store_velocities(ContactState<N>& s, std::vector<Body<N>>& bodies) {
 template <int N>
 void apply_accumulated_point(ContactState<N>& s, const Constraint<N>& c, int k) {
   const PointConstraint<N>& p = s.paper.points[c.first + k];
-  apply_impulse(s.solver_bodies[c.a], s.solver_bodies[c.b], p, Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
+  apply_impulse(s.solver_bodies[c.a], s.masses[c.a], s.solver_bodies[c.b], s.masses[c.b], p,
+                Vec<N>(p.normal_impulse * c.normal + p.tangent_impulse));
 }
 // The same for every point of the constraint.
 template <int N>

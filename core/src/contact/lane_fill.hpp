@@ -88,12 +88,12 @@ template <int N>
 void fill_wide_header(ContactState<N>& s, WideConstraint<N>& w) {
   constexpr int K = kBiv<N>;
   const Constraint<N>* c[kLanes<N>];
-  const SolverBody<N>* a[kLanes<N>];
-  const SolverBody<N>* b[kLanes<N>];
+  const BodyMass<N>* a[kLanes<N>];
+  const BodyMass<N>* b[kLanes<N>];
   for (int l = 0; l < kLanes<N>; ++l) {
     c[l] = w.constraint[l] >= 0 ? &s.graph.constraints[w.constraint[l]] : nullptr;
-    a[l] = c[l] && (w.move_a >> l & 1u) ? &s.solver_bodies[w.a[l]] : nullptr;
-    b[l] = c[l] && (w.move_b >> l & 1u) ? &s.solver_bodies[w.b[l]] : nullptr;
+    a[l] = c[l] && (w.move_a >> l & 1u) ? &s.masses[w.a[l]] : nullptr;
+    b[l] = c[l] && (w.move_b >> l & 1u) ? &s.masses[w.b[l]] : nullptr;
   }
   for (int i = 0; i < N; ++i) w.normal[i] = make_wide<Wide<N>>([&](int l) { return c[l] ? c[l]->normal[i] : 0.0; });
   w.inv_mass_a = make_wide<Wide<N>>([&](int l) { return a[l] ? a[l]->inv_mass : 0.0; });

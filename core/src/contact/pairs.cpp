@@ -103,6 +103,7 @@ void add_body(ContactState<N>& s, const std::vector<Body<N>>& bodies, const Shap
   s.list.proxy.push_back(-1);
   s.list.box.push_back(Aabb<N>{});
   s.solver_bodies.emplace_back();
+  s.masses.emplace_back();
   s.list.radius.push_back(0.0);
   s.list.inradius.push_back(0.0);
   const Shape<N>* shape = shapes[index].get();

@@ -121,6 +121,8 @@ void restitute_lane(ContactState<N>& s, const ContactSettings& settings, const W
   if (c.restitution <= 0.0) return;
   SolverBody<N>& a = s.solver_bodies[c.a];
   SolverBody<N>& b = s.solver_bodies[c.b];
+  const BodyMass<N>& ma = s.masses[c.a];
+  const BodyMass<N>& mb = s.masses[c.b];
   Pair<N>& pair = s.list.pairs[c.pair];
   for (int k = 0; k < c.count; ++k) {
     const WidePoint<N>& q = s.soft.wide_points[w.first + k];
@@ -138,8 +140,8 @@ void restitute_lane(ContactState<N>& s, const ContactSettings& settings, const W
     const double change = next - impulse;
     impulse = next;
     total += change;
-    apply_normal_impulse(a, b, c.normal, change, Biv(inverse_inertia_times(a, jn_a)),
-                         Biv(inverse_inertia_times(b, jn_b)));
+    apply_normal_impulse(a, ma, b, mb, c.normal, change, Biv(inverse_inertia_times(ma, jn_a)),
+                         Biv(inverse_inertia_times(mb, jn_b)));
   }
 }
 
@@ -245,8 +247,8 @@ void assign_lanes(ContactState<N>& s) {
         if (k >= 0) w.count = std::max(w.count, s.graph.constraints[k].count);
         if (k >= 0 && !s.solver_bodies[w.a[l]].frozen) w.move_a |= 1u << l;
         if (k >= 0 && !s.solver_bodies[w.b[l]].frozen) w.move_b |= 1u << l;
-        if (((w.move_a >> l & 1u) && !s.solver_bodies[w.a[l]].isotropic) ||
-            ((w.move_b >> l & 1u) && !s.solver_bodies[w.b[l]].isotropic))
+        if (((w.move_a >> l & 1u) && !s.masses[w.a[l]].isotropic) ||
+            ((w.move_b >> l & 1u) && !s.masses[w.b[l]].isotropic))
           w.inertia = 0;
       }
       if (w.inertia >= 0) {

@@ -40,7 +40,8 @@ double speed_of(const PointConstraint<N>& p, double impulse) {
 // began), else mu j_n against the slip; then the normal impulse that brings the normal velocity to the
 // target, never pulling.
 template <int N>
-PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& p, const Constraint<N>& c, double target) {
+PointChange solve_point(SolverBody<N>& a, const BodyMass<N>& ma, SolverBody<N>& b, const BodyMass<N>& mb,
+                        PointConstraint<N>& p, const Constraint<N>& c, double target) {
   const Vec<N>& n = c.normal;
   const Vec<N> u = relative_velocity(a, b, p);
   double un = n.dot(u);               // normal velocity
@@ -58,7 +59,7 @@ PointChange solve_point(SolverBody<N>& a, SolverBody<N>& b, PointConstraint<N>& 
   }
   const double next = std::max(p.normal_impulse + p.normal_mass * (target - un), 0.0);
   const double change = next - p.normal_impulse;
-  apply_impulse(a, b, p, Vec<N>(friction + change * n));
+  apply_impulse(a, ma, b, mb, p, Vec<N>(friction + change * n));
   p.normal_impulse = next;
   return {std::abs(change), friction.cwiseAbs().maxCoeff()};
 }
@@ -106,12 +107,12 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
     // asleep, adds nothing to the pair's K, which then stays as build_constraints left it.)
     for (std::size_t i = begin; i < end; ++i) {
       const Constraint<N>& c = s.graph.constraints[s.paper.shock_order[i]];
-      const SolverBody<N>& a = s.solver_bodies[c.a];
-      const SolverBody<N>& b = s.solver_bodies[c.b];
+      const BodyMass<N>& a = s.masses[c.a];
+      const BodyMass<N>& b = s.masses[c.b];
       const bool fa = s.paper.bodies[c.a].level < level && a.inv_mass > 0.0,
                  fb = s.paper.bodies[c.b].level < level && b.inv_mass > 0.0;
       if (!fa && !fb) continue;
-      const SolverBody<N>& moving = fa ? b : a;
+      const BodyMass<N>& moving = fa ? b : a;
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.paper.points[k];
         const Vec<N>& r = fa ? p.rb : p.ra;
@@ -139,7 +140,8 @@ void shock_propagation(ContactState<N>& s, const ContactSettings& settings, doub
         double change = 0.0;
         for (int k = c.first; k < c.first + c.count; ++k) {
           PointConstraint<N>& q = s.paper.points[k];
-          change = std::max(change, speed_of(q, solve_point(a, b, q, c, contact_target(q, h)).normal));
+          change = std::max(change,
+                            speed_of(q, solve_point(a, s.masses[c.a], b, s.masses[c.b], q, c, contact_target(q, h)).normal));
         }
         c.shock_tick = ++tick;
         c.shock_change = change;
@@ -164,8 +166,8 @@ template <int N>
 void correct_positions(ContactState<N>& s, const ContactSettings& settings, double h) {
   for (int it = 0; it < settings.position_iterations; ++it)
     for (const Constraint<N>& c : s.graph.constraints) {
-      const SolverBody<N>& a = s.solver_bodies[c.a];
-      const SolverBody<N>& b = s.solver_bodies[c.b];
+      const BodyMass<N>& a = s.masses[c.a];
+      const BodyMass<N>& b = s.masses[c.b];
       PaperBody<N>& pa = s.paper.bodies[c.a];
       PaperBody<N>& pb = s.paper.bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
@@ -201,7 +203,7 @@ void limit_energy(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool r
     while (s.islands.union_parent[i] != i) i = s.islands.union_parent[i] = s.islands.union_parent[s.islands.union_parent[i]];
     return i;
   };
-  auto moves = [&](int i) { return s.solver_bodies[i].inv_mass > 0.0; };
+  auto moves = [&](int i) { return s.masses[i].inv_mass > 0.0; };
   for (const Constraint<N>& c : s.graph.constraints)
     if ((!restitutive_only || c.restitution > 0.0) && moves(c.a) && moves(c.b)) {
       const int ra = root(c.a), rb = root(c.b);
@@ -263,7 +265,7 @@ void process_collisions(ContactState<N>& s, std::vector<Body<N>>& bodies, const 
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& p = s.paper.points[k];
         if (!(p.approach < 0.0 && p.gap + h * p.approach < 0.0)) continue;
-        solve_point(a, b, p, c, -c.restitution * p.approach);
+        solve_point(a, s.masses[c.a], b, s.masses[c.b], p, c, -c.restitution * p.approach);
       }
     }
   limit_energy(s, bodies, true);
@@ -300,7 +302,7 @@ void process_contacts(ContactState<N>& s, std::vector<Body<N>>& bodies, const Co
       SolverBody<N>& b = s.solver_bodies[c.b];
       for (int k = c.first; k < c.first + c.count; ++k) {
         PointConstraint<N>& q = s.paper.points[k];
-        const PointChange d = solve_point(a, b, q, c, contact_target(q, h));
+        const PointChange d = solve_point(a, s.masses[c.a], b, s.masses[c.b], q, c, contact_target(q, h));
         largest = std::max(largest, speed_of(q, std::max(d.normal, d.tangent)));
       }
     }

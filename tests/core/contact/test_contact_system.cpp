@@ -44,13 +44,13 @@ TEMPLATE_TEST_CASE_SIG("a point's angular change and K term equal the lever-arm 
   for (int trial = 0; trial < 200; ++trial) {
     const Vec<N> r = random_vector<N>(rng), j = random_vector<N>(rng);
     const WedgeMat<N> jr = wedge_matrix<N>(r);
-    contact::SolverBody<N> general;
+    contact::BodyMass<N> general;
     general.inv_inertia = random_inverse_inertia<N>(rng);
-    contact::SolverBody<N> isotropic;
+    contact::BodyMass<N> isotropic;
     isotropic.isotropic = true;
     isotropic.iso_inv_inertia = 0.25 + 0.01 * trial;
     isotropic.inv_inertia = isotropic.iso_inv_inertia * BivMat<N>::Identity();
-    for (const contact::SolverBody<N>* b : {&general, &isotropic}) {
+    for (const contact::BodyMass<N>* b : {&general, &isotropic}) {
       // Sums of a few products of numbers below 10: agreement to 1e-12 is round-off; a wrong sign or
       // index is off by order 1.
       const Eigen::Matrix<double, kBiv<N>, 1> expected = b->inv_inertia * (jr * j);
@@ -70,10 +70,11 @@ contact::ContactState<2> constraints_with(const std::vector<int>& counts,
                                           std::vector<int> colour_start, int body_count) {
   contact::ContactState<2> s;
   s.solver_bodies.resize(body_count);
+  s.masses.resize(body_count);
   for (int i = 0; i < body_count; ++i) {
-    s.solver_bodies[i].inv_mass = 1.0 + i;
-    s.solver_bodies[i].isotropic = true;
-    s.solver_bodies[i].iso_inv_inertia = 2.0 + i;
+    s.masses[i].inv_mass = 1.0 + i;
+    s.masses[i].isotropic = true;
+    s.masses[i].iso_inv_inertia = 2.0 + i;
   }
   int first = 0;
   for (std::size_t k = 0; k < counts.size(); ++k) {
@@ -130,10 +131,10 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
   bodies.insert(bodies.end(), {{1, 3}, {1, 4}});
   contact::ContactState<2> s = constraints_with(counts, bodies, {0, colour0, colour0 + 1, colour0 + 3}, L + 4);
   s.solver_bodies[0].frozen = true;
-  s.solver_bodies[0].inv_mass = 0.0;
-  s.solver_bodies[0].iso_inv_inertia = 0.0;
-  s.solver_bodies[1].isotropic = false;
-  s.solver_bodies[1].inv_inertia(0, 0) = 7.0;
+  s.masses[0].inv_mass = 0.0;
+  s.masses[0].iso_inv_inertia = 0.0;
+  s.masses[1].isotropic = false;
+  s.masses[1].inv_inertia(0, 0) = 7.0;
   contact::pack_wide(s);
 
   // Colour 0 takes two wide constraints, colour 1 one, the uncoloured group two.
@@ -169,8 +170,8 @@ TEST_CASE("the soft step packs each colour's constraints into lanes, point for p
         CHECK(bool(wc.move_a >> l & 1u) == !s.solver_bodies[c.a].frozen);
         CHECK(bool(wc.move_b >> l & 1u) == !s.solver_bodies[c.b].frozen);
         CHECK(wc.normal[1][l] == 0.8);
-        CHECK(wc.inv_mass_a[l] == s.solver_bodies[c.a].inv_mass);
-        CHECK(wc.iso_b[l] == s.solver_bodies[c.b].iso_inv_inertia);
+        CHECK(wc.inv_mass_a[l] == s.masses[c.a].inv_mass);
+        CHECK(wc.iso_b[l] == s.masses[c.b].iso_inv_inertia);
         for (int j = 0; j < wc.count; ++j) {
           const contact::WidePoint<2>& q = s.soft.wide_points[wc.first + j];
           if (j >= c.count) {
@@ -246,8 +247,10 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
   contact::ContactState<N> s;
   const int bodies = 2 * coloured + 2;
   s.solver_bodies.resize(bodies);
+  s.masses.resize(bodies);
   for (int i = 0; i < bodies; ++i) {
     contact::SolverBody<N>& b = s.solver_bodies[i];
+    contact::BodyMass<N>& m = s.masses[i];
     b.v = random_vector<N>(rng);
     for (int k = 0; k < kBiv<N>; ++k) b.w.c[k] = u(rng);
     if (i > 0) {
@@ -259,18 +262,18 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
     }
     if (i < 2) {  // frozen: only read
       b.frozen = true;
-      b.isotropic = true;
+      m.isotropic = true;
       if (i == 0) b.v.setZero();
       continue;
     }
-    b.inv_mass = 0.5 + unit(rng);
+    m.inv_mass = 0.5 + unit(rng);
     if (inertia == 0 || (inertia == 2 && rng() % 2 == 0)) {
-      b.isotropic = true;
-      b.iso_inv_inertia = 0.5 + unit(rng);
-      b.inv_inertia = b.iso_inv_inertia * BivMat<N>::Identity();
+      m.isotropic = true;
+      m.iso_inv_inertia = 0.5 + unit(rng);
+      m.inv_inertia = m.iso_inv_inertia * BivMat<N>::Identity();
     } else {
-      b.inv_inertia = random_inverse_inertia<N>(rng);
-      b.iso_inv_inertia = b.inv_inertia(0, 0);
+      m.inv_inertia = random_inverse_inertia<N>(rng);
+      m.iso_inv_inertia = m.inv_inertia(0, 0);
     }
   }
   const auto add = [&](int a, int b) {
@@ -284,8 +287,8 @@ contact::ContactState<N> random_pass_state(std::mt19937& rng, int coloured, int 
     s.list.pairs.emplace_back();
     s.list.pairs.back().manifold.count = c.count;
     for (int k = 0; k < c.count; ++k) s.list.pairs.back().manifold.points[k].id = 100 + k;
-    const contact::SolverBody<N>& sa = s.solver_bodies[a];
-    const contact::SolverBody<N>& sb = s.solver_bodies[b];
+    const contact::BodyMass<N>& sa = s.masses[a];
+    const contact::BodyMass<N>& sb = s.masses[b];
     for (int k = 0; k < c.count; ++k) {
       contact::PointConstraint<N> p;
       p.ra = 0.5 * random_vector<N>(rng);
@@ -344,6 +347,8 @@ void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings
   for (const contact::Constraint<N>& c : s.graph.constraints) {
     contact::SolverBody<N>& a = s.solver_bodies[c.a];
     contact::SolverBody<N>& b = s.solver_bodies[c.b];
+    const contact::BodyMass<N>& ma = s.masses[c.a];
+    const contact::BodyMass<N>& mb = s.masses[c.b];
     const Vec<N>& n = c.normal;
     for (int k = 0; k < c.count && !use_bias; ++k) {
       contact::PointConstraint<N>& p = s.paper.points[c.first + k];
@@ -365,7 +370,7 @@ void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings
       const double change = next - p.normal_impulse;
       p.normal_impulse = next;
       p.normal_total += change;
-      contact::apply_normal_impulse(a, b, n, change, p.dn_a, p.dn_b);
+      contact::apply_normal_impulse(a, ma, b, mb, n, change, p.dn_a, p.dn_b);
     }
     for (int k = 0; k < c.count; ++k) {
       contact::PointConstraint<N>& p = s.paper.points[c.first + k];
@@ -374,7 +379,7 @@ void reference_pass(contact::ContactState<N>& s, const ContactSettings& settings
       const Vec<N> next = contact::friction_update(p, n, Vec<N>(u - n.dot(u) * n));
       const Vec<N> change = next - p.tangent_impulse;
       p.tangent_impulse = next;
-      contact::apply_impulse(a, b, p, change);
+      contact::apply_impulse(a, ma, b, mb, p, change);
     }
   }
 }
@@ -527,7 +532,7 @@ TEMPLATE_TEST_CASE_SIG("a sub-step's warm start body by body equals every point'
           contact::PointConstraint<N> lever;  // (apply_impulse reads the lever arms alone)
           lever.ra = s.list.pairs[c.pair].arm_a[k];
           lever.rb = s.list.pairs[c.pair].arm_b[k];
-          contact::apply_impulse(expected[c.a], expected[c.b], lever, j);
+          contact::apply_impulse(expected[c.a], s.masses[c.a], expected[c.b], s.masses[c.b], lever, j);
         }
       double scale = 0.0;
       for (const auto& b : expected) scale = std::max({scale, b.v.cwiseAbs().maxCoeff(), b.w.c.cwiseAbs().maxCoeff()});

@@ -206,8 +206,8 @@ TEMPLATE_TEST_CASE_SIG("a recycled pair's effective masses are those formed afre
     REQUIRE(s.graph.constraints.size() == 3);  // ground-cube, cube-cube, ground-cuboid
     for (const contact::Constraint<N>& c : s.graph.constraints) {
       const contact::Pair<N>& p = s.list.pairs[c.pair];
-      const contact::SolverBody<N>& a = s.solver_bodies[c.a];
-      const contact::SolverBody<N>& b = s.solver_bodies[c.b];
+      const contact::BodyMass<N>& a = s.masses[c.a];
+      const contact::BodyMass<N>& b = s.masses[c.b];
       // (Every round builds the same three pairs, so each was built in the last one from round 1.)
       const bool eligible = p.recycled && round > 0 && a.isotropic && b.isotropic;
       CHECK(p.built == s.graph.builds);  // (this build's number, which tells the next build where they were)
@@ -343,8 +343,8 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
       CHECK(c.friction == mix_friction(ma.friction, mb.friction));
       CHECK(c.kinetic_friction == std::min(mix_friction(ma.kinetic_friction, mb.kinetic_friction), c.friction));
       CHECK(c.restitution == mix_restitution(ma.restitution, mb.restitution));
-      const contact::SolverBody<N>& a = ref.solver_bodies[c.a];
-      const contact::SolverBody<N>& b = ref.solver_bodies[c.b];
+      const contact::BodyMass<N>& a = ref.masses[c.a];
+      const contact::BodyMass<N>& b = ref.masses[c.b];
       REQUIRE(c.first == int(ref.paper.points.size()));
       for (int k = 0; k < c.count; ++k) {
         contact::PointConstraint<N> q;
@@ -359,7 +359,9 @@ TEMPLATE_TEST_CASE_SIG("the soft step's lanes are those packed from points forme
         q.dn_a = contact::inverse_inertia_times(a, q.jn_a);
         q.dn_b = contact::inverse_inertia_times(b, q.jn_b);
         q.gap = -p.manifold.points[k].depth;
-        const Vec<N> u = b.v + dot<N>(q.rb, b.w) - a.v - dot<N>(q.ra, a.w);
+        const contact::SolverBody<N>& va = ref.solver_bodies[c.a];
+        const contact::SolverBody<N>& vb = ref.solver_bodies[c.b];
+        const Vec<N> u = vb.v + dot<N>(q.rb, vb.w) - va.v - dot<N>(q.ra, va.w);
         q.approach = c.normal.dot(u);
         const Vec<N> slip = u - q.approach * c.normal;
         q.sliding = slip.norm() > settings.static_slip_speed;
