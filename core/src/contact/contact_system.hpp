@@ -28,14 +28,15 @@
 #include <type_traits>
 #include <vector>
 
-#include "linalg/fixed_size.hpp"  // set_effective_masses: the tangent mass
-
 #include "wedge/body.hpp"
 #include "wedge/collision/aabb.hpp"
 #include "wedge/collision/detail/broadphase.hpp"
 #include "wedge/contact.hpp"
 #include "wedge/grab.hpp"
 #include "wedge/profile.hpp"
+#include "contact/constraint.hpp"
+#include "contact/pair.hpp"
+#include "contact/solver_body.hpp"
 #include "contact/wide.hpp"
 #include "parallel/workers.hpp"
 
@@ -45,238 +46,6 @@ struct Motion;  // dynamics/integrate.hpp
 }  // namespace wedge::dynamics
 
 namespace wedge::contact {
-
-// A pair of bodies whose bounding boxes overlap (or a half-space and a body below its plane), a < b.
-// Its fields are in the order the step reads them: the soft step's build reads the pairs in colour
-// order, not in memory order, so all it reads comes first (through warm_arm), then what the recycling
-// reads; the unpacking at the end of the step, in colour order too, writes warm_normal to
-// warm_tangent, side by side.
-template <int N>
-struct alignas(64) Pair {
-  std::uint32_t a = 0, b = 0;
-  bool updated = false;    // narrow phase run in this step (false: both asleep, manifold kept)
-  bool touching = false;   // received a normal impulse or penetrated in the last step
-  bool recycled = false;   // (below)
-  bool cached = false;     // (contact recycling, below)
-  // Index of its constraint in this step, or -1. (In the first line, with the manifold's head: the
-  // events' sweep over every pair reads these alone.)
-  int constraint = -1;
-  Manifold<N> manifold;
-  // Where its points were put in PaperSolver::points or SoftSolver::point_masses by the build numbered `built`
-  // (ConstraintGraph::builds), or -1: the last step's when built + 1 is this step's number (last_first).
-  // recycled (soft step): this step's manifold is the last step's carried along (recycling.cpp), so a
-  // point's normal, lever arms and, for bodies whose inertia is isotropic, effective masses are the
-  // same, and the build takes them from the last step's. mass_key: the bodies' 1/m and isotropic 1/I
-  // those masses were formed with. (Numbered rather than reset every step: the sweep that starts the
-  // build then wrote this line of every pair, and zeroed its impulses on another.)
-  int points_first = -1;
-  int warm_count = 0;      // (warm start, below)
-  std::uint64_t built = 0;
-  double approach_speed = 0.0;  // m/s, >= 0: the fastest its points approached when the step began (events)
-  std::array<double, 4> mass_key{};
-  // Warm start: the contact-stage impulses of the last step per feature id (warm_id below), given back
-  // to the points that continue them (same id, or same place), so the iterations start from last
-  // step's answer. The impulses the soft step unpacks at the end of the step are together, on a line of
-  // their own in 2D (unpack_lane; the keys, warm_id and warm_arm, are kept by the build). (In 3D and up
-  // they take three lines or more whatever their alignment, which would cost a line per pair.)
-  alignas(N == 2 ? 64 : alignof(double)) std::array<double, kMaxManifoldPoints<N>> warm_normal{};
-  std::array<double, kMaxManifoldPoints<N>> normal_impulse{};  // N s, in the last step
-  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_tangent = zero_vectors();
-  // The lever arms of the manifold's points from a's and b's centres (world frame) in this step: equal
-  // to point - centre for a fresh manifold, carried along with each body for a recycled one.
-  std::array<Vec<N>, kMaxManifoldPoints<N>> arm_a = zero_vectors(), arm_b = zero_vectors();
-  // The warm points' feature ids, and their lever arms from a's centre (world frame), to match points
-  // whose id changed by place.
-  std::array<std::uint64_t, kMaxManifoldPoints<N>> warm_id{};
-  std::array<Vec<N>, kMaxManifoldPoints<N>> warm_arm = zero_vectors();
-  // Contact recycling (recycling.cpp): the state when the manifold was last computed (cached), to carry
-  // it along while the bodies barely move relative to each other.
-  Mat<N> rotation_a = Mat<N>::Identity(), rotation_b = Mat<N>::Identity();  // the bodies' rotations then
-  Vec<N> relative_position = Vec<N>::Zero();       // m, b's centre in a's frame then
-  std::array<Vec<N>, kMaxManifoldPoints<N>> anchor_a = zero_vectors(), anchor_b = zero_vectors();  // arms then
-  std::array<double, kMaxManifoldPoints<N>> base_gap{};  // m, each point's gap then
-  bool operator<(const Pair& o) const { return a != o.a ? a < o.a : b < o.b; }
-
- private:
-  // Eigen vectors are not zeroed by {}; GCC rightly warns about copying them uninitialised.
-  static std::array<Vec<N>, kMaxManifoldPoints<N>> zero_vectors() {
-    std::array<Vec<N>, kMaxManifoldPoints<N>> v;
-    v.fill(Vec<N>::Zero());
-    return v;
-  }
-};
-
-// What the next step's warm start matches a pair's points by (warm_matches): their count, feature ids
-// and lever arms from a's centre. (Kept as the soft step's build reads the pair, before the solve, since
-// nothing the solve does changes them; the impulses follow at the end of the step, unpack_lane.)
-template <int N>
-inline void keep_warm_keys(Pair<N>& pair, int count) {
-  pair.warm_count = count;
-  for (int k = 0; k < count; ++k) {
-    pair.warm_id[k] = pair.manifold.points[k].id;
-    pair.warm_arm[k] = pair.arm_a[k];  // (the points' and lanes' ra)
-  }
-}
-
-// A body's velocities as the solvers see them, and for the soft step what its sub-steps integrate and
-// how far it has moved: all that the soft step's sweeps over the bodies touch, and nothing else (its
-// masses are in BodyMass, the paper's solver's pseudo velocities and levels in PaperBody). What the
-// sweeps read most comes first: the passes gather v and w, the sweeps between them these and the warm
-// start, the snapshot and the velocity integration.
-template <int N>
-struct alignas(64) SolverBody {
-  Vec<N> v = Vec<N>::Zero();
-  Bivector<N> w{};
-  bool frozen = false;  // infinite mass for the current shock-propagation level (soft step: does not move)
-  bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else it is apart)
-  bool advances = false;    // not static and awake: the soft step's position update moves it
-  bool apart = false;       // soft step: moves, and integrate_velocities_apart integrates its velocities
-  // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
-  // next sub-step (soft_step.cpp, warm_start_substep).
-  Vec<N> warm_v = Vec<N>::Zero();
-  Bivector<N> warm_w{};
-  Vec<N> v0 = Vec<N>::Zero();  // velocities before the stage (its energy check) or soft-step pass
-  Bivector<N> w0{};
-  // Soft step: a sub-step's velocity integration, the same for each of the step's sub-steps
-  // (prepare_soft_step, integrate_substep_velocity): v = (v + dv) decay_v, w = w decay_w, where integrates.
-  Vec<N> dv = Vec<N>::Zero();
-  double decay_v = 1.0, decay_w = 1.0;
-  // Then what the position update reads and writes of it (integrate_substep_positions).
-  // Soft step: where the body was when the step began, and how far it has moved and turned since
-  // (the turn as a matrix, dq = R R0^-1), so the sub-steps see each contact's current separation.
-  Vec<N> x0 = Vec<N>::Zero();
-  Mat<N> r0_inverse = Mat<N>::Identity();
-  Vec<N> dp = Vec<N>::Zero();
-  Mat<N> dq = Mat<N>::Identity();
-};
-
-// A body's inverse mass and inertia in this step (load_solver_bodies, build.cpp), 0 for one that does
-// not move: what forming effective masses and applying impulses outside the soft step's lanes read
-// (ContactState::masses).
-template <int N>
-struct BodyMass {
-  double inv_mass = 0.0;
-  // The inverse inertia is iso_inv_inertia times the identity in every frame (a body whose inertia is
-  // the same about every plane: a cube, a ball). The impulse passes then scale r ^ j instead of
-  // multiplying it by the matrix, and inv_inertia is that exactly.
-  bool isotropic = false;
-  double iso_inv_inertia = 0.0;
-  BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
-};
-
-// What the paper's solver keeps of a body beside its SolverBody (PaperSolver::bodies).
-template <int N>
-struct PaperBody {
-  Vec<N> vp = Vec<N>::Zero();  // pseudo velocity (split impulse): moves the position this step, then is dropped
-  Bivector<N> wp{};
-  int level = 0;               // contact-graph level (shock propagation)
-  std::uint64_t moved = 0;     // shock propagation: the visit that last changed its velocity beyond tolerance
-};
-
-// One contact point: lever arms, what it needs of K = delta/m + [r]_*^T I^-1 [r]_* (summed over the
-// bodies that can move), the effective masses along the normal and in the tangent space, and the
-// accumulated impulses of the current stage.
-template <int N>
-struct PointConstraint {
-  // (The soft step builds no PointConstraints: its points go straight into the lanes, wide.hpp and
-  // build_wide in build.cpp; fill_wide packs these the same way, for the tests. After the last
-  // sub-step the lanes' impulses go to the pairs: unpack_wide.)
-  double separation = 0.0;       // m, soft step: the separation when the step began (the lanes follow it)
-  double normal_mass = 0.0;      // 1 / (n^T K n), of the bodies that can move
-  double normal_impulse = 0.0;   // N s, accumulated in the current stage
-  double normal_total = 0.0;     // N s, over all stages (events, ContactInfo)
-  // Soft step: the normal's rows of the Jacobian, n . (r . w) = jn . w, and the angular velocity change
-  // per unit normal impulse, I^-1 jn (the normal passes need no more of ra, rb; restitution reads them;
-  // the lanes keep I^-1 jn only for non-isotropic bodies, and form it from jn for the rest).
-  Eigen::Matrix<double, kBiv<N>, 1> jn_a = Eigen::Matrix<double, kBiv<N>, 1>::Zero(), jn_b = jn_a, dn_a = jn_a,
-                                    dn_b = jn_a;
-  // Friction (and both passes of the paper's solver).
-  double friction = 0.0;  // the coefficient in use: static if the point was not slipping at the start
-  bool sliding = false;   // it was slipping: kinetic friction, against the slip
-  Vec<N> tangent_impulse = Vec<N>::Zero();          // N s, accumulated in the current stage
-  Vec<N> slip_direction = Vec<N>::Zero();  // unit, the tangential slip when the step began (if sliding)
-  Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, from the centres of mass
-  // (P K P + n n^T)^-1 with P = 1 - n n^T: maps a tangential velocity change to the tangential impulse
-  // that makes it (of the pair, or of the unfrozen body during shock propagation).
-  Mat<N> tangent_mass = Mat<N>::Zero();
-  // K n, of the bodies that can move (the pair's, or the unfrozen body's in shock propagation): how a
-  // friction impulse j_t changes the normal velocity, n . K j_t = (K n) . j_t.
-  Vec<N> kn = Vec<N>::Zero();
-  double gap = 0.0;                                 // m, -depth at the start of the step
-  double approach = 0.0;                            // m/s, normal velocity at the start (< 0 closing)
-  double warm_normal = 0.0;                         // N s, last step's contact-stage impulses (warm start)
-  Vec<N> warm_tangent = Vec<N>::Zero();
-  double base_separation = 0.0;  // m, soft step: gap - n . (rb - ra), so that the current separation is
-                                 // base + n . (dp_b + dq_b rb - dp_a - dq_a ra)
-  double pseudo = 0.0;                              // split impulse along the normal
-  double pseudo_mass = 0.0;                         // 1 / (n^T K n) of the pair (kept through shock propagation)
-};
-
-// What the soft step's lanes take of a point's effective masses and Jacobian (the rest of its lanes come
-// from its LanePoint, lane_fill.hpp): formed from K, or, for a recycled pair of isotropic bodies, the last step's
-// (SoftSolver::point_masses, Pair::points_first and built). 2D keeps the tangent mass along t alone (wide.hpp).
-template <int N>
-struct PointMasses {
-  using Biv = Eigen::Matrix<double, kBiv<N>, 1>;
-  using Tangent = std::conditional_t<N == 2, double, Mat<N>>;
-  double normal_mass = 0.0;
-  Biv jn_a = Biv::Zero(), jn_b = Biv::Zero();
-  Tangent tangent_mass = zero_tangent();
-
- private:
-  static Tangent zero_tangent() {
-    if constexpr (N == 2) {
-      return 0.0;
-    } else {
-      return Mat<N>::Zero();
-    }
-  }
-};
-
-// The effective masses of K for a contact with normal n.
-// A point whose K is not finite and positive (a lever arm from a broken manifold point) gets zero
-// effective masses, so it never receives an impulse instead of turning the bodies' velocities to NaN.
-// (P: a PointConstraint, or anything with its kn, normal_mass and tangent_mass.)
-template <int N, class P>
-inline void set_effective_masses(P& p, const Mat<N>& k, const Vec<N>& n) {
-  p.kn = k * n;
-  p.normal_mass = 1.0 / n.dot(p.kn);
-  const Mat<N> proj = Mat<N>::Identity() - n * n.transpose();
-  p.tangent_mass = linalg::inverse<N>(Mat<N>(proj * k * proj + n * n.transpose()));
-  if (!(std::isfinite(p.normal_mass) && p.normal_mass >= 0.0) || !all_finite(p.tangent_mass)) {
-    p.normal_mass = 0.0;
-    p.tangent_mass.setZero();
-    p.kn.setZero();
-  }
-}
-
-template <int N>
-struct Constraint {
-  int pair = 0;   // index into pairs
-  int a = 0, b = 0;
-  Vec<N> normal = Vec<N>::Zero();
-  double friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
-  int first = 0, count = 0;  // points[first .. first + count)
-  int level = 0;             // max of the bodies' levels (shock propagation order)
-  std::uint64_t shock_tick = 0;  // shock propagation: its last visit (see SolverBody::moved)
-  double shock_change = 0.0;     // m/s, the largest normal velocity change of that visit
-};
-
-// A grab slot: the definition, and what the current step derived from it (see wedge/grab.hpp).
-template <int N>
-struct GrabConstraint {
-  GrabDef<N> def;
-  std::uint32_t generation = 0;
-  bool live = false;
-  bool active = false;                       // live, on an awake dynamic body, in this step
-  double inv_mass = 0.0;                     // 1/kg, the body's in this step
-  Vec<N> r = Vec<N>::Zero();                 // m, grab point from the centre of mass (world)
-  Eigen::Matrix<double, kBiv<N>, N> w = Eigen::Matrix<double, kBiv<N>, N>::Zero();  // I'^-1 [r]_*
-  Mat<N> mass = Mat<N>::Zero();              // K^-1
-  Vec<N> bias = Vec<N>::Zero();              // m/s, bias_rate C
-  double mass_scale = 0.0, impulse_scale = 0.0, max_impulse = 0.0;
-  Vec<N> impulse = Vec<N>::Zero();           // N s, accumulated (kept between steps: warm start)
-};
 
 // The instruction set of the soft step's lane kernels (wide.hpp): 2-lane packs (SSE2, or NEON), or in
 // 2D and 3D 4-lane packs on AVX2 or AVX-512 (the same packs, with twice the registers). All give the
@@ -290,25 +59,8 @@ Lanes default_lanes();
 bool lanes_supported(Lanes l);
 
 // The state of each group of stages, owned by that group (the file named) and read by the others only
-// where the comment says so. ContactState below holds one of each.
-
-// The pair list (pairs.cpp): the broad phase and its per-body proxies and boxes, the candidate pairs,
-// and the persistent sorted list of pairs.
-template <int N>
-struct PairList {
-  BroadPhase<N> broad_phase;
-  std::vector<int> proxy;                 // per body: broad-phase proxy, -1 without one
-  std::vector<Aabb<N>> box;               // per body: tight world box at the last update
-  std::vector<double> radius;             // per body: m, farthest point of its shape from the centre of mass
-  std::vector<double> inradius;           // per body: m, nearest point of its surface to the centre of mass
-  std::vector<std::uint32_t> halfspaces;  // bodies whose shape is a half-space
-  std::vector<typename BroadPhase<N>::Pair> candidate_pairs;
-  // The half-space pairs of this step and of the last (when neither they nor the broad phase's
-  // changed, candidate_pairs stands).
-  std::vector<typename BroadPhase<N>::Pair> halfspace_pairs, previous_halfspace_pairs;
-  std::vector<Pair<N>> pairs, next_pairs;  // sorted by (a, b)
-  std::vector<std::uint64_t> pair_keys;     // a << 32 | b of each pair, in order (merge_pairs' check)
-};
+// where the comment says so. ContactState below holds one of each: PairList (pair.hpp),
+// ConstraintGraph (constraint.hpp) and the groups below; the solver bodies are in solver_body.hpp.
 
 // The narrow phase (collide.cpp), and what continuous collision (continuous.cpp) reads of it.
 template <int N>
@@ -323,35 +75,6 @@ struct NarrowPhase {
   std::vector<Rotor<N>> start_rotor;
   std::vector<unsigned char> wakes;  // per list entry: it touches a sleeping body
   std::vector<int> continuous_hits;  // continuous.cpp's scratch: the static bodies a swept body may reach
-};
-
-// The step's constraints (constraint_graph.cpp places them, build.cpp builds them): in pair order (the
-// paper's solver) or colour order (soft step).
-template <int N>
-struct ConstraintGraph {
-  std::vector<Constraint<N>> constraints;
-  std::vector<int> constraint_pairs;         // the pairs that make them, in that order
-  std::vector<std::uint32_t> colour_mask;    // per body: the colours its constraints took this step
-  std::vector<int> colour_of, colour_order;  // colouring scratch (colour_order: the seeds in colour order)
-  // Per constraint-to-be, in pair order: what colouring and placing its points need of its pair, read in
-  // the one sweep over the pairs that finds them (the pairs are large, and read in colour order each
-  // of their lines is a cache miss).
-  // Colouring and the lanes are a function of the seeds alone (with which moving bodies are isotropic),
-  // so a step whose seeds are the last step's keeps the last step's colours and lanes (graph_kept).
-  struct Seed {
-    int pair = 0;
-    std::uint32_t a = 0, b = 0;
-    int count = 0;
-    bool move_a = false, move_b = false;
-    bool iso_a = true, iso_b = true;  // the body is isotropic, or does not move
-  };
-  std::vector<Seed> seeds, previous_seeds;
-  bool graph_kept = false;  // this step's constraints, colours and lanes are placed as the last step's
-  // Soft step: where each colour's constraints begin, the uncoloured group's last, then the end (empty
-  // for the paper's solver, whose constraints are in pair order).
-  std::vector<int> colour_start;
-  bool built_soft = false;   // the last step's constraints were the soft step's (previous_masses is theirs)
-  std::uint64_t builds = 0;  // the builds so far, this step's included (Pair::built)
 };
 
 // The paper's solver (solver.cpp): the constraints' points (built by build.cpp; the tests pack the soft
@@ -665,36 +388,6 @@ inline bool moves(const ContactState<N>& s, const std::vector<Body<N>>& bodies, 
 template <int N>
 inline bool moving_kinematic(const Body<N>& b) {
   return b.type == BodyType::Kinematic && (b.velocity.squaredNorm() > 0.0 || b.angular_velocity.c.squaredNorm() > 0.0);
-}
-
-// I^-1 t for a bivector t (world frame): a scale for an isotropic body.
-template <int N>
-inline Eigen::Matrix<double, kBiv<N>, 1> inverse_inertia_times(const BodyMass<N>& b,
-                                                               const Eigen::Matrix<double, kBiv<N>, 1>& t) {
-  if (b.isotropic) return b.iso_inv_inertia * t;
-  return b.inv_inertia * t;
-}
-// The change of the body's angular velocity per impulse j at lever arm r: I^-1 (r ^ j). Formed here
-// rather than kept per point as the k x N matrix I^-1 [r]_*, which would be most of a point's size;
-// for an isotropic body it is a scale.
-template <int N>
-inline Eigen::Matrix<double, kBiv<N>, 1> angular_change(const BodyMass<N>& b, const Vec<N>& r, const Vec<N>& j) {
-  return inverse_inertia_times(b, outer<N>(r, j).c);
-}
-
-// The body's part of K = delta/m + [r]_*^T I^-1 [r]_* without the 1/m: [r]_*^T I^-1 [r]_*, which for an
-// isotropic body is s (|r|^2 1 - r r^T) (r . (r ^ a) = |r|^2 a - (r . a) r).
-template <int N>
-inline Mat<N> angular_mass_term(const BodyMass<N>& b, const Vec<N>& r) {
-  if (b.isotropic) return b.iso_inv_inertia * (r.squaredNorm() * Mat<N>::Identity() - r * r.transpose());
-  const WedgeMat<N> jr = wedge_matrix<N>(r);
-  return jr.transpose() * (b.inv_inertia * jr);
-}
-
-// Relative velocity of b with respect to a at the point: (v_b + r_b . w_b) - (v_a + r_a . w_a).
-template <int N, class P>  // (P: a PointConstraint, or anything with its lever arms ra, rb)
-inline Vec<N> relative_velocity(const SolverBody<N>& a, const SolverBody<N>& b, const P& p) {
-  return b.v + dot<N>(p.rb, b.w) - a.v - dot<N>(p.ra, a.w);
 }
 
 }  // namespace wedge::contact
