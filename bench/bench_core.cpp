@@ -2,8 +2,8 @@
 //   BM_WorldStep<N>       one World<N>::step of 1000 free tumbling boxes with gravity, per body (default
 //                         settings: implicit midpoint gyroscopic step, rotor repair every step)
 //   BM_WorldStepEuler<N>  the same with the paper's implicit Euler gyroscopic step (one Newton step)
-//   BM_Exp<N>             exp of a sub-step's turn (components in [-0.01, 0.01]): the closed forms up to 5D, one
-//                         eigenvector and the two-plane closed form in 6D (exp_log.hpp)
+//   BM_Exp<N>             exp of a sub-step's turn (components in [-0.01, 0.01]): the closed forms up to 5D, the
+//                         invariants' power series in 6D (exp_three_planes, exp_log.hpp)
 //   BM_ExpByDecomposition<N>  the same by the eigenvector decomposition of every plane
 //   BM_*Compose<N>        Rotor * Rotor vs Eigen N x N matrix product (vs quaternion product in 3D)
 //   BM_*Apply<N>          rotor sandwich R x ~R vs matrix-vector product M x with M precomputed

@@ -105,6 +105,125 @@ Rotor<N> exp_two_planes(const Bivector<N>& b) {
   return r;
 }
 
+namespace {
+// Power series in x = t^2, coefficients of x^0 .. x^9 (valid for x < pi^2 / 4):
+//   tan t / t = 1 + x/3 + 2x^2/15 + ..    t cot t = 1 - x/3 - x^2/45 - ..
+//   log cos t = -x/2 - x^2/12 - ..       log(sin t / t) = -x/6 - x^2/180 - ..
+constexpr int kSeriesTerms = 10;
+constexpr double kTanc[kSeriesTerms] = {1.0,
+                                        1.0 / 3.0,
+                                        2.0 / 15.0,
+                                        17.0 / 315.0,
+                                        62.0 / 2835.0,
+                                        1382.0 / 155925.0,
+                                        21844.0 / 6081075.0,
+                                        929569.0 / 638512875.0,
+                                        6404582.0 / 10854718875.0,
+                                        443861162.0 / 1856156927625.0};
+constexpr double kTCot[kSeriesTerms] = {1.0,
+                                        -1.0 / 3.0,
+                                        -1.0 / 45.0,
+                                        -2.0 / 945.0,
+                                        -1.0 / 4725.0,
+                                        -2.0 / 93555.0,
+                                        -1382.0 / 638512875.0,
+                                        -4.0 / 18243225.0,
+                                        -3617.0 / 162820783125.0,
+                                        -87734.0 / 38979295480125.0};
+constexpr double kLogCos[kSeriesTerms] = {0.0,
+                                          -1.0 / 2.0,
+                                          -1.0 / 12.0,
+                                          -1.0 / 45.0,
+                                          -17.0 / 2520.0,
+                                          -31.0 / 14175.0,
+                                          -691.0 / 935550.0,
+                                          -10922.0 / 42567525.0,
+                                          -929569.0 / 10216206000.0,
+                                          -3202291.0 / 97692469875.0};
+constexpr double kLogSinc[kSeriesTerms] = {0.0,
+                                           -1.0 / 6.0,
+                                           -1.0 / 180.0,
+                                           -1.0 / 2835.0,
+                                           -1.0 / 37800.0,
+                                           -1.0 / 467775.0,
+                                           -691.0 / 3831077250.0,
+                                           -2.0 / 127702575.0,
+                                           -3617.0 / 2605132530000.0,
+                                           -43867.0 / 350813659321125.0};
+
+// A function of the squared angle on the three roots x_i of chi(x) = x^3 - s1 x^2 + s2 x - s3, as the
+// quadratic a + b x + c x^2 that takes its values there: the series f_0 + f_1 x + .. + f_K x^K reduced
+// modulo chi by Horner's rule (x (a + b x + c x^2) = s3 c + (a - s2 c) x + (b + s1 c) x^2 on the roots).
+// No root is formed and nothing divides by a difference of roots, so equal angles need no care.
+struct OnRoots {
+  double a = 0.0, b = 0.0, c = 0.0;
+};
+OnRoots series_on_roots(const double* f, int terms, double s1, double s2, double s3) {
+  OnRoots q{f[terms - 1], 0.0, 0.0};
+  for (int n = terms - 2; n >= 0; --n) q = OnRoots{s3 * q.c + f[n], q.a - s2 * q.c, q.b + s1 * q.c};
+  return q;
+}
+}  // namespace
+
+template <int N>
+Rotor<N> exp_three_planes(const Bivector<N>& b) {
+  using namespace ga;
+  static_assert(N >= 4);
+  constexpr int k = kBiv<N>, k4 = binomial(N, 4);
+  using Quad = Eigen::Matrix<double, k4, 1>;
+  // The invariants: Q = <B B>_4 / 2 = sum_{i<j} t_i t_j b_i b_j and T = <Q B>_6 / 3 = t1 t2 t3 b1 b2 b3
+  // (its e012345 coefficient tau), so s1 = |B|^2, s2 = |Q|^2 and s3 = tau^2 are the elementary symmetric
+  // functions of the squared angles.
+  Quad q = Quad::Zero();
+  ga::detail::product<Terms<N, Set::Bivector, Set::Bivector, Set::Quadvector, Product::Geometric>>(b, b, q);
+  q *= 0.5;
+  double tau = 0.0;
+  if constexpr (N == 6) {
+    Eigen::Matrix<double, 1, 1> t6 = Eigen::Matrix<double, 1, 1>::Zero();
+    ga::detail::product<Terms<N, Set::Quadvector, Set::Bivector, Set::Pseudoscalar, Product::Geometric>>(q, b, t6);
+    tau = t6[0] / 3.0;
+  }
+  const double s1 = b.squared_norm(), s2 = q.squaredNorm(), s3 = tau * tau;
+  // For X = sum_i y_i t_i b_i, <Q X>_2 = -sum_m t_m b_m sum_{i != m} x_i y_i (<b_i b_j b_j>_2 = -b_i), so
+  // B' = sum x_i t_i b_i = <Q B>_2 + e1 B and B'' = sum x_i^2 t_i b_i = <Q B'>_2 + p2 B with p2 = sum x_i^2
+  // (Newton's identity). Q' = sum x_k t_i t_j b_i b_j (k the plane left out) = -T B, and Q'' = -T B'.
+  const double p2 = s1 * s1 - 2.0 * s2;
+  const auto contract_q = [&](const Bivector<N>& x) {
+    Bivector<N> o;
+    ga::detail::product<Terms<N, Set::Quadvector, Set::Bivector, Set::Bivector, Product::Geometric>>(q, x, o);
+    return o;
+  };
+  const Bivector<N> b1 = contract_q(b) + b * s1;
+  const Bivector<N> b2 = contract_q(b1) + b * p2;
+  // Every series' n-th term is below (0.42 x)^n for x <= s1 (the nearest poles are at x = pi^2 / 4): take
+  // terms until that is below 1e-17.
+  int terms = 1;
+  for (double e = s1 * 0.42; e > 1e-17 && terms < kSeriesTerms; e *= s1 * 0.42) ++terms;
+  // exp(B) = prod_i (c_i + s_i b_i) = C + C sum_i tanc(t_i) t_i b_i + S sum_k (t_k cot t_k) t_i t_j b_i b_j + S T
+  // with C = prod_i cos t_i and S = prod_i sin t_i / t_i (c_i s_j s_k... regrouped around the plane that
+  // differs), and sum_i f(x_i) t_i b_i = a B + b B' + c B'' for f = a + b x + c x^2 on the roots.
+  const OnRoots lc = series_on_roots(kLogCos, terms, s1, s2, s3);
+  const OnRoots ls = series_on_roots(kLogSinc, terms, s1, s2, s3);
+  const double cos_product = std::exp(3.0 * lc.a + lc.b * s1 + lc.c * p2);
+  const double sinc_product = std::exp(3.0 * ls.a + ls.b * s1 + ls.c * p2);
+  const OnRoots f = series_on_roots(kTanc, terms, s1, s2, s3);
+  const OnRoots g = series_on_roots(kTCot, terms, s1, s2, s3);
+  Rotor<N> r;
+  r.c[0] = cos_product;
+  r.c.template segment<k>(1) = cos_product * (f.a * b.c + f.b * b1.c + f.c * b2.c);
+  Quad grade4 = g.a * q;
+  if constexpr (N == 6) {
+    Quad tb = Quad::Zero(), tb1 = Quad::Zero();
+    const Eigen::Matrix<double, 1, 1> t6{tau};
+    ga::detail::product<Terms<N, Set::Pseudoscalar, Set::Bivector, Set::Quadvector, Product::Geometric>>(t6, b, tb);
+    ga::detail::product<Terms<N, Set::Pseudoscalar, Set::Bivector, Set::Quadvector, Product::Geometric>>(t6, b1, tb1);
+    grade4 -= g.b * tb + g.c * tb1;
+    r.c[kEven<N> - 1] = sinc_product * tau;
+  }
+  r.c.template segment<k4>(1 + k) = sinc_product * grade4;
+  return r;
+}
+
 template <int N>
 Rotor<N> exp_by_invariants(const Bivector<N>& b) {
   using namespace ga;
@@ -112,6 +231,8 @@ Rotor<N> exp_by_invariants(const Bivector<N>& b) {
   // to eps |B| rather than eps; the eigenvectors keep larger turns (initial orientations, not the
   // sub-steps' small ones) exact to eps.
   if (!(b.squared_norm() <= 1.0)) return exp_by_decomposition(b);
+  if constexpr (N == 6)
+    if (b.squared_norm() <= 1.0 / 64.0) return exp_three_planes(b);
   if constexpr (N <= 5) {
     return exp_two_planes(b);
   } else {
@@ -179,5 +300,8 @@ Bivector<N> log_by_decomposition(const Rotor<N>& r) {
   template Bivector<N> log_by_decomposition<N>(const Rotor<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
+template Rotor<4> exp_three_planes<4>(const Bivector<4>&);
+template Rotor<5> exp_three_planes<5>(const Bivector<5>&);
+template Rotor<6> exp_three_planes<6>(const Bivector<6>&);
 
 }  // namespace wedge

@@ -48,7 +48,7 @@ constexpr bool lex_less(unsigned a, unsigned b) {
   return false;
 }
 
-enum class Set { Full, Even, Odd, Vector, Bivector };
+enum class Set { Full, Even, Odd, Vector, Bivector, Quadvector, Pseudoscalar };
 
 template <int N>
 struct Blades {
@@ -65,6 +65,8 @@ struct Blades {
       case Set::Odd: return g % 2 == 1;
       case Set::Vector: return g == 1;
       case Set::Bivector: return g == 2;
+      case Set::Quadvector: return g == 4;
+      case Set::Pseudoscalar: return g == N;
     }
     return false;
   }

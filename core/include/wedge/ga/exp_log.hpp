@@ -4,7 +4,8 @@
 // decomposition), B = sum_i t_i u_i^v_i, so exp(B) = prod_i (cos t_i + sin t_i u_i^v_i); in 4D that is a
 // double rotation. 2D and 3D bivectors are always simple; 4D has a closed form through the self-dual /
 // anti-self-dual split; 5D bivectors have at most two planes, whose exp has a closed form in the invariants
-// |B|^2 and |B^B|^2 (exp_two_planes); 6D peels its largest plane with one eigenvector first.
+// |B|^2 and |B^B|^2 (exp_two_planes); 6D's sub-step turns (|B| <= 1/8) from power series in its three
+// invariants (exp_three_planes), larger 6D turns peel their largest plane with one eigenvector first.
 // Convention: R = exp(B) rotates u toward v by -2t in each plane, so dR/dt = -1/2 w R gives R = exp(-w t/2).
 #pragma once
 
@@ -103,10 +104,27 @@ Rotor<N> exp_by_decomposition(const Bivector<N>& b);
 template <int N>
 Rotor<N> exp_two_planes(const Bivector<N>& b);
 
+// exp of a bivector of at most three planes (every bivector up to 7D; defined for N = 4, 5, 6) with
+// |B|^2 <= 1/64, from its invariants, with neither an eigensolver nor a root:
+//   exp(B) = prod_i (c_i + s_i b_i) = C + C sum_i tanc(t_i) B_i + S sum_{i<j} (t_k cot t_k) B_i B_j + S B1 B2 B3
+// (c_i = cos t_i, s_i = sin t_i, B_i = t_i b_i, k the plane other than i and j, C = prod_i c_i,
+// S = prod_i sin t_i / t_i). The squared angles x_i are the roots of x^3 - e1 x^2 + e2 x - e3 with
+// e1 = |B|^2, e2 = |Q|^2, e3 = tau^2 for Q = <B B>_4 / 2 and T = tau I = <Q B>_6 / 3. Any power series f
+// taken on the roots is a quadratic a + b x + c x^2 there (the series reduced modulo the cubic), so
+//   sum_i f(x_i) B_i = a B + b B' + c B'',  B' = <Q B>_2 + e1 B,  B'' = <Q B'>_2 + p2 B,
+//   sum_k g(x_k) B_i B_j = a Q - b T B - c T B',
+// with p2 = sum x_i^2 = e1^2 - 2 e2, and log C, log S are sums over the roots of the series of log cos and
+// log sinc: 3a + b e1 + c p2.
+// Equal angles need no care: nothing divides by a difference of roots. The series converge as
+// (x / 2.47)^n; the term count follows |B| (4 terms at a sub-step's typical |B| = 0.01, 8 at 1/8).
+template <int N>
+Rotor<N> exp_three_planes(const Bivector<N>& b);
+
 // exp for N >= 5 and |B| <= 1 (every sub-step's turn of a body below 960 rad/s): exp_two_planes in 5D; in
-// 6D the largest plane B1 = t u^v (u the top eigenvector of W^T W, v = W u / t) is peeled first,
-// exp(B) = (cos t + sin t u^v) exp_two_planes(B - B1). Larger B go to exp_by_decomposition: the closed
-// form's terms grow like |B| and cancel, so its rotor is exact only to eps |B| there.
+// 6D exp_three_planes up to |B| = 1/8; beyond it the largest plane B1 = t u^v (u the top eigenvector of
+// W^T W, v = W u / t) is peeled first, exp(B) = (cos t + sin t u^v) exp_two_planes(B - B1). Larger B go to
+// exp_by_decomposition: the closed form's terms grow like |B| and cancel, so its rotor is exact only to
+// eps |B| there.
 template <int N>
 Rotor<N> exp_by_invariants(const Bivector<N>& b);
 

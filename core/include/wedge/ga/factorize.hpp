@@ -76,7 +76,12 @@ Rotor<N> compose(const RotorFactors<N>& f) {
   for (int i = 0; i + 1 < f.count; i += 2) {
     const Vec<N>& x = f.v[i];
     const Vec<N>& y = f.v[i + 1];
-    r = r * Rotor<N>::from_parts(x.dot(y), outer<N>(x, y));  // x y = x.y + x^y
+    // r (x y) with x y = x.y + x^y: a rotor times a scalar and a bivector (kBiv<N> terms per rotor
+    // component, where a rotor product would take kEven<N>).
+    Rotor<N> next = r * x.dot(y);
+    ga::detail::product<ga::Terms<N, ga::Set::Even, ga::Set::Bivector, ga::Set::Even, ga::Product::Geometric>>(
+        r, outer<N>(x, y), next);
+    r = next;
   }
   return r;
 }
