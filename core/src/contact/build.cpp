@@ -311,16 +311,33 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
       m.inv_mass = b.inv_mass;
       m.isotropic = linalg::is_isotropic(b.inv_inertia);
       m.iso_inv_inertia = b.inv_inertia(0, 0);
-      if (m.isotropic)
-        m.inv_inertia = m.iso_inv_inertia * BivMat<N>::Identity();  // (turning it changes nothing)
-      else
-        m.inv_inertia = b.world_inv_inertia();
+      m.world_pending = !m.isotropic;  // (load_world_inertias, for the bodies constraints use)
+      if (m.isotropic) m.inv_inertia = m.iso_inv_inertia * BivMat<N>::Identity();  // (turning it changes nothing)
     } else {
+      m.world_pending = false;
       m.inv_mass = 0.0;
       m.isotropic = true;
       m.iso_inv_inertia = 0.0;
       m.inv_inertia.setZero();
     }
+  });
+}
+
+// The world inverse inertia [R]_2 I^-1 [R]_2^T (two k x k products) of each non-isotropic body that a
+// constraint or a live grab uses this step; a body alone in the air needs none. Marked serially, turned
+// body by body.
+template <int N>
+void load_world_inertias(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  std::vector<char>& used = s.inertia_used;
+  used.assign(bodies.size(), 0);
+  for (const Constraint<N>& c : s.graph.constraints) used[c.a] = used[c.b] = 1;
+  for (const GrabConstraint<N>& g : s.grabs)
+    if (g.live) used[g.def.body.index] = 1;
+  for_each_body(s, int(bodies.size()), [&](int i) {
+    BodyMass<N>& m = s.masses[i];
+    if (!m.world_pending || !used[i]) return;
+    m.inv_inertia = bodies[i].world_inv_inertia();
+    m.world_pending = false;
   });
 }
 
@@ -333,6 +350,7 @@ void build_constraints(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   const bool soft = settings.solver == ContactSolver::SoftStep;
   ++s.graph.builds;
   update_constraint_graph(s, bodies, soft);
+  load_world_inertias(s, bodies);
   if (!s.graph.graph_kept) {
     const int total = s.graph.constraints.empty() ? 0 : s.graph.constraints.back().first + s.graph.constraints.back().count;
     // (The last step's masses are kept for the recycled pairs; the build writes every one it uses. With

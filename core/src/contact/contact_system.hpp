@@ -155,6 +155,7 @@ struct ContactState {
   Events<N> events;
   std::vector<SolverBody<N>> solver_bodies;  // per body (build.cpp loads them)
   std::vector<BodyMass<N>> masses;           // per body (likewise)
+  std::vector<char> inertia_used;            // per body: a constraint or a grab uses its masses this step
   std::vector<GrabConstraint<N>> grabs;      // slots, solved in slot order (grab.cpp)
   std::vector<char> driven;                  // per body: held by an active grab this step
   parallel::Workers workers;                 // WorldSettings::workers, set by World::step

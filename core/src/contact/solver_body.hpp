@@ -56,6 +56,9 @@ struct BodyMass {
   bool isotropic = false;
   double iso_inv_inertia = 0.0;
   BivMat<N> inv_inertia = BivMat<N>::Zero();  // world frame
+  // A non-isotropic body's inv_inertia is turned into the world frame only if a constraint or a grab
+  // uses it this step (load_world_inertias): until then it is stale.
+  bool world_pending = false;
 };
 
 // What the paper's solver keeps of a body beside its SolverBody (PaperSolver::bodies).
