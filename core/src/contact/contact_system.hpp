@@ -38,6 +38,7 @@
 #include "contact/pair.hpp"
 #include "contact/solver_body.hpp"
 #include "contact/wide.hpp"
+#include "dynamics/integrate.hpp"
 #include "parallel/workers.hpp"
 
 namespace wedge::dynamics {
@@ -112,6 +113,7 @@ struct SoftSolver {
   // integrate_substep_positions as it moves each body, or by the relax pass first.
   bool solve_finish_pending = false;
   std::vector<int> integrate_apart;  // moving bodies whose velocities integrate_velocities_apart integrates
+  std::vector<dynamics::AngularModel<N>> angular_models;  // per body: theirs, found once per step
 };
 
 // Islands and sleep (islands.cpp), per body; every stage reads `awake`, and wakes through wake_island.

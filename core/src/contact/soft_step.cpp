@@ -282,6 +282,7 @@ void pack_wide(ContactState<N>& s) {
 template <int N>
 void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h, const dynamics::Motion<N>* motion) {
+  if (motion) s.soft.angular_models.resize(bodies.size());
   for_each_body(s, int(bodies.size()), [&](int i) {
     const Body<N>& b = bodies[i];
     SolverBody<N>& sb = s.solver_bodies[i];
@@ -289,7 +290,12 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     if (!motion) return;
     const bool moving = moves(s, bodies, i);
     sb.integrates = false;
-    sb.apart = moving && dynamics::needs_body_frame(b, *motion);  // (integrate_apart below)
+    sb.apart = false;
+    if (moving) {
+      dynamics::AngularModel<N>& model = s.soft.angular_models[i];
+      model = dynamics::angular_model(b, *motion);
+      sb.apart = model.body_frame;  // (integrate_apart below)
+    }
     if (!moving || sb.apart) return;
     sb.integrates = true;
     sb.dv = h * (motion->gravity + b.force * b.inv_mass);
@@ -309,7 +315,7 @@ void integrate_velocities_apart(ContactState<N>& s, const std::vector<Body<N>>& 
   for (const int i : s.soft.integrate_apart) {
     SolverBody<N>& sb = s.solver_bodies[i];
     if (s.soft.pass_change_pending) add_pass_change(sb);  // (before the velocities move on)
-    dynamics::integrate_velocity(bodies[i], motion, h, sb.v, sb.w);
+    dynamics::integrate_velocity(bodies[i], s.soft.angular_models[i], motion, h, sb.v, sb.w);
   }
 }
 

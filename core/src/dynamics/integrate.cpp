@@ -61,21 +61,11 @@ bool is_diagonal(const BivMat<N>& m) {
       if (i != j && m(i, j) != 0.0) return false;
   return true;
 }
-}  // namespace
 
+// The simplified Newton iterations of world.hpp's gyroscopic_step, for any inertia.
 template <int N>
-Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
+Bivector<N> gyroscopic_by_newton(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
   const bool euler = method == GyroscopicMethod::ImplicitEuler;
-  if (!euler && is_diagonal<N>(inertia)) {
-    const Bivector<N> moments = Bivector<N>::from(inertia.diagonal());
-    Bivector<N> w2;
-    if (midpoint_by_iteration<N>(moments, w, h, w2)) {
-      // (the converged midpoint conserves w . I w; round-off may still raise it by an ulp)
-      const double e0 = w.c.dot(moments.c.cwiseProduct(w.c)), e1 = w2.c.dot(moments.c.cwiseProduct(w2.c));
-      if (e1 > e0) w2 *= std::sqrt(e0 / e1);
-      return w2;
-    }
-  }
   const double t = euler ? 1.0 : 0.5;
   // Both iterations use the Jacobian at the first iterate w' = w (simplified Newton): it changes by
   // O(h |w|^2) over the step, so the second iteration still converges, at a cost of one factorisation.
@@ -94,6 +84,25 @@ Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, doub
   return w2;
 }
 
+// The midpoint step of a diagonal inertia with these moments (inertia the same, for Newton's fallback).
+template <int N>
+Bivector<N> gyroscopic_diagonal(const Bivector<N>& moments, const BivMat<N>& inertia, const Bivector<N>& w, double h) {
+  Bivector<N> w2;
+  if (!midpoint_by_iteration<N>(moments, w, h, w2)) return gyroscopic_by_newton<N>(inertia, w, h, GyroscopicMethod::ImplicitMidpoint);
+  // (the converged midpoint conserves w . I w; round-off may still raise it by an ulp)
+  const double e0 = w.c.dot(moments.c.cwiseProduct(w.c)), e1 = w2.c.dot(moments.c.cwiseProduct(w2.c));
+  if (e1 > e0) w2 *= std::sqrt(e0 / e1);
+  return w2;
+}
+}  // namespace
+
+template <int N>
+Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, double h, GyroscopicMethod method) {
+  if (method == GyroscopicMethod::ImplicitMidpoint && is_diagonal<N>(inertia))
+    return gyroscopic_diagonal<N>(Bivector<N>::from(inertia.diagonal()), inertia, w, h);
+  return gyroscopic_by_newton<N>(inertia, w, h, method);
+}
+
 namespace dynamics {
 
 template <int N>
@@ -102,13 +111,33 @@ bool needs_body_frame(const Body<N>& b, const Motion<N>& motion) {
 }
 
 template <int N>
+AngularModel<N> angular_model(const Body<N>& b, const Motion<N>& motion) {
+  AngularModel<N> m;
+  m.torque = !b.torque.c.isZero(0.0);
+  m.body_frame = m.torque || (motion.gyroscopic && !linalg::is_isotropic(b.inertia));
+  m.gyroscopic = motion.gyroscopic;
+  m.diagonal = m.body_frame && m.gyroscopic && motion.gyroscopic_method == GyroscopicMethod::ImplicitMidpoint &&
+               is_diagonal<N>(b.inertia);
+  if (m.diagonal) m.moments = Bivector<N>::from(b.inertia.diagonal());
+  return m;
+}
+
+template <int N>
 void integrate_velocity(const Body<N>& b, const Motion<N>& motion, double h, Vec<N>& v, Bivector<N>& w) {
+  integrate_velocity(b, angular_model(b, motion), motion, h, v, w);
+}
+
+template <int N>
+void integrate_velocity(const Body<N>& b, const AngularModel<N>& model, const Motion<N>& motion, double h, Vec<N>& v,
+                        Bivector<N>& w) {
   v += h * (motion.gravity + b.force * b.inv_mass);
-  if (needs_body_frame(b, motion)) {
-    const bool torque = !b.torque.c.isZero(0.0);
+  if (model.body_frame) {
     Bivector<N> wb = rotate_inverse(b.rotor, w);
-    if (torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
-    if (motion.gyroscopic) wb = gyroscopic_step<N>(b.inertia, wb, h, motion.gyroscopic_method);
+    if (model.torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
+    if (model.diagonal)
+      wb = gyroscopic_diagonal<N>(model.moments, b.inertia, wb, h);
+    else if (model.gyroscopic)
+      wb = gyroscopic_by_newton<N>(b.inertia, wb, h, motion.gyroscopic_method);
     w = rotate(b.rotor, wb);
   }
   v *= 1.0 / (1.0 + h * b.linear_drag);
@@ -121,7 +150,10 @@ void integrate_velocity(const Body<N>& b, const Motion<N>& motion, double h, Vec
   template Bivector<N> gyroscopic_step<N>(const BivMat<N>&, const Bivector<N>&, double, GyroscopicMethod); \
   template bool dynamics::needs_body_frame<N>(const Body<N>&, const dynamics::Motion<N>&);                  \
   template void dynamics::integrate_velocity<N>(const Body<N>&, const dynamics::Motion<N>&, double, Vec<N>&, \
-                                                Bivector<N>&);
+                                                Bivector<N>&);                                                \
+  template dynamics::AngularModel<N> dynamics::angular_model<N>(const Body<N>&, const dynamics::Motion<N>&); \
+  template void dynamics::integrate_velocity<N>(const Body<N>&, const dynamics::AngularModel<N>&,             \
+                                                const dynamics::Motion<N>&, double, Vec<N>&, Bivector<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
