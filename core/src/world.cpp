@@ -407,6 +407,8 @@ void World<N>::soft_step(double h) {
     contact::solve_substep(*contact_, bodies_, c, hs, false);
     profile_.relax += clock.lap();
   }
+  contact::integrate_alone(*contact_, bodies_, motion, hs, c.substeps, repair_at_end);
+  profile_.integrate_positions += clock.lap();
   contact::finish_soft_step(*contact_, bodies_, c);
   profile_.finish = clock.lap();
 }

@@ -70,6 +70,24 @@ void prefetch_pair(const Pair<N>& p) {
   for (std::size_t at = 0; at < sizeof(Pair<N>); at += 64) __builtin_prefetch(bytes + at);
 }
 
+// The transforms of the bodies of this round's pairs that have none yet in this step (NarrowPhase::pose).
+template <int N>
+void pose_pairs_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
+  std::vector<int>& unposed = s.narrow.unposed;
+  unposed.clear();
+  for (const int pi : s.narrow.list) {
+    const Pair<N>& p = s.list.pairs[pi];
+    for (const std::uint32_t i : {p.a, p.b})
+      if (!s.narrow.posed[i]) {
+        s.narrow.posed[i] = 1;
+        unposed.push_back(int(i));
+      }
+  }
+  s.workers.for_ranges(int(unposed.size()), kBodyGrain, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) s.narrow.pose[unposed[k]] = transform_of(bodies[unposed[k]]);
+  });
+}
+
 }  // namespace
 
 // Collides every pair with an awake dynamic body (or a moving kinematic one against a dynamic body).
@@ -82,13 +100,14 @@ void collide_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies, const
                    const ContactSettings& settings, double h) {
   auto active = [&](std::uint32_t i) { return moves(s, bodies, i); };
   auto sleeps = [&](std::uint32_t i) { return bodies[i].is_dynamic() && !s.islands.awake[i]; };
-  // (Every body's: waking in a later round moves none.)
+  // (Every body's: waking in a later round moves none. The poses only of the bodies in a pair collided,
+  // pose_pairs_bodies: a body alone in the air needs none.)
   s.narrow.pose.resize(bodies.size());
+  s.narrow.posed.assign(bodies.size(), 0);
   s.narrow.speed.resize(bodies.size());
   s.narrow.start_center.resize(bodies.size());
   s.narrow.start_rotor.resize(bodies.size());
   for_each_body(s, int(bodies.size()), [&](int i) {
-    s.narrow.pose[i] = transform_of(bodies[i]);
     s.narrow.speed[i] = speed_bound(s, bodies[i], i);
     s.narrow.start_center[i] = bodies[i].center;
     s.narrow.start_rotor[i] = bodies[i].rotor;
@@ -105,6 +124,7 @@ void collide_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies, const
                          (moving_kinematic(b) && a.is_dynamic())))
         s.narrow.list.push_back(int(pi));
     }
+    pose_pairs_bodies(s, bodies);
     // (Whether a pair touches a sleeping body is noted as it is collided, and only those pairs are
     // read again, in order, to wake: reading every pair again was a sweep over kilobytes of pairs.)
     s.narrow.wakes.resize(s.narrow.list.size());

@@ -69,7 +69,9 @@ struct NarrowPhase {
   std::vector<int> list;  // the pairs of one round
   // Per body: its transform and how fast any of its points moves (m/s), formed once per step instead
   // of once per pair side (a pyramid's box has up to six pairs).
-  std::vector<Transform<N>> pose;
+  std::vector<Transform<N>> pose;  // (only of bodies in a pair collided this step: posed)
+  std::vector<char> posed;
+  std::vector<int> unposed;        // collide.cpp's scratch: the bodies whose poses a round still needs
   std::vector<double> speed;
   // Per body, where the step began (continuous collision sweeps from there).
   std::vector<Vec<N>> start_center;
@@ -113,6 +115,7 @@ struct SoftSolver {
   // integrate_substep_positions as it moves each body, or by the relax pass first.
   bool solve_finish_pending = false;
   std::vector<int> integrate_apart;  // moving bodies whose velocities integrate_velocities_apart integrates
+  std::vector<int> alone;            // the bodies integrate_alone moves (SolverBody::alone)
   std::vector<dynamics::AngularModel<N>> angular_models;  // per body: theirs, found once per step
 };
 
@@ -277,10 +280,10 @@ double solve_grabs(ContactState<N>& state);
 // soft_step.cpp: the SoftStep solver's stages. World::step runs prepare_soft_step, then per sub-step
 // integrate_velocities_apart, solve_substep(use_bias = true) (the other bodies' velocity integration
 // first, integrate_substep_velocity), integrate_substep_positions (with track_body_motion) and
-// solve_substep(false), then finish_soft_step.
-// prepare_soft_step: where each body starts (start_body_motion), its sub-steps' velocity integration
-// from `motion` (without one, the tests', the velocities are not integrated: the caller changes them
-// between sub-steps), then prepare_soft_contacts.
+// solve_substep(false), then integrate_alone and finish_soft_step.
+// prepare_soft_step: where each body starts (start_body_motion), which bodies are alone, its sub-steps'
+// velocity integration from `motion` (without one, the tests', the velocities are not integrated and no
+// body is alone: the caller changes them between sub-steps), then prepare_soft_contacts.
 template <int N>
 void prepare_soft_step(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h, const dynamics::Motion<N>* motion = nullptr);
@@ -290,8 +293,16 @@ template <int N>
 void integrate_velocities_apart(ContactState<N>& state, const std::vector<Body<N>>& bodies,
                                 const dynamics::Motion<N>& motion, double h);
 // Every awake body moved by its solver body's velocities over h (and, when repair_now, its rotor repaired).
+// The bodies alone are integrate_alone's.
 template <int N>
 void integrate_substep_positions(ContactState<N>& state, std::vector<Body<N>>& bodies, double h, bool repair_now);
+// The bodies alone (SolverBody::alone: no constraint or grab uses them this step) through all the step's
+// `substeps` sub-steps of h, body by body: velocities, then positions, and when repair_at_end the rotor
+// repaired after the last. Between the sub-steps nothing reads or changes such a body, so taking its
+// sub-steps together is the sub-step loop's arithmetic in another order: the same bits.
+template <int N>
+void integrate_alone(ContactState<N>& state, std::vector<Body<N>>& bodies, const dynamics::Motion<N>& motion,
+                     double h, int substeps, bool repair_at_end);
 template <int N>
 void prepare_soft_contacts(ContactState<N>& state, const ContactSettings& settings, double h);
 // Where a body starts the soft step, for its motion since (track_body_motion).

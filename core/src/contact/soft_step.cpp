@@ -277,8 +277,9 @@ void pack_wide(ContactState<N>& s) {
 // integration is v = (v + dv) decay_v and w = w decay_w with the same numbers every sub-step, worked out
 // here once (dynamics::integrate_velocity's arithmetic, so the same bits) and run by the solve sub-step
 // in its first sweep (integrate_substep_velocity). The bodies it cannot do are listed in
-// integrate_apart for integrate_velocities_apart. The same sweep notes where each body starts the step
-// (start_body_motion).
+// integrate_apart for integrate_velocities_apart, and the bodies alone (no constraint or grab uses them:
+// load_world_inertias has marked those that are used) in `alone` for integrate_alone. The same sweep
+// notes where each body the sub-steps move starts the step (start_body_motion).
 template <int N>
 void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                        double h, const dynamics::Motion<N>* motion) {
@@ -286,26 +287,32 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
   for_each_body(s, int(bodies.size()), [&](int i) {
     const Body<N>& b = bodies[i];
     SolverBody<N>& sb = s.solver_bodies[i];
-    start_body_motion(sb, b);
+    sb.alone = motion && sb.advances && !s.inertia_used[i];
+    if (!sb.alone) start_body_motion(sb, b);
     if (!motion) return;
     const bool moving = moves(s, bodies, i);
-    sb.integrates = false;
-    sb.apart = false;
+    bool body_frame = false;
     if (moving) {
       dynamics::AngularModel<N>& model = s.soft.angular_models[i];
       model = dynamics::angular_model(b, *motion);
-      sb.apart = model.body_frame;  // (integrate_apart below)
+      body_frame = model.body_frame;
     }
-    if (!moving || sb.apart) return;
-    sb.integrates = true;
+    sb.apart = moving && body_frame && !sb.alone;  // (integrate_apart below)
+    sb.integrates = moving && !body_frame && !sb.alone;
+    if (sb.alone) sb.advances = false;
+    if (!moving || body_frame) return;
     sb.dv = h * (motion->gravity + b.force * b.inv_mass);
     sb.decay_v = 1.0 / (1.0 + h * b.linear_drag);
     sb.decay_w = 1.0 / (1.0 + h * b.angular_drag);
   });
-  s.soft.integrate_apart.clear();  // (from the flag: the bodies' torques and inertias are lines more each)
+  // (From the flags: the bodies' torques and inertias are lines more each.)
+  s.soft.integrate_apart.clear();
+  s.soft.alone.clear();
   if (motion)
-    for (int i = 0; i < int(bodies.size()); ++i)
+    for (int i = 0; i < int(bodies.size()); ++i) {
       if (s.solver_bodies[i].apart) s.soft.integrate_apart.push_back(i);
+      if (s.solver_bodies[i].alone) s.soft.alone.push_back(i);
+    }
   prepare_soft_contacts(s, settings, h);
 }
 
@@ -317,6 +324,45 @@ void integrate_velocities_apart(ContactState<N>& s, const std::vector<Body<N>>& 
     if (s.soft.pass_change_pending) add_pass_change(sb);  // (before the velocities move on)
     dynamics::integrate_velocity(bodies[i], s.soft.angular_models[i], motion, h, sb.v, sb.w);
   }
+}
+
+// One body alone through the step's sub-steps: each as the sub-step loop would take it, velocities
+// (integrate_velocity, or the step's constants: integrate_substep_velocity's arithmetic) then position.
+template <int N>
+void integrate_body_alone(ContactState<N>& s, std::vector<Body<N>>& bodies, const dynamics::Motion<N>& motion,
+                          double h, int substeps, bool repair_at_end, int i) {
+  SolverBody<N>& sb = s.solver_bodies[i];
+  Body<N>& b = bodies[i];
+  const bool moving = b.is_dynamic();
+  const dynamics::AngularModel<N>& model = s.soft.angular_models[i];
+  for (int k = 0; k < substeps; ++k) {
+    if (moving && model.body_frame) {
+      dynamics::integrate_velocity(b, model, motion, h, sb.v, sb.w);
+    } else if (moving) {
+      sb.v += sb.dv;
+      sb.v *= sb.decay_v;
+      sb.w *= sb.decay_w;
+    }
+    dynamics::advance_body(b, sb.v, sb.w, h, repair_at_end && k == substeps - 1);
+  }
+}
+
+template <int N>
+void integrate_alone(ContactState<N>& s, std::vector<Body<N>>& bodies, const dynamics::Motion<N>& motion, double h,
+                     int substeps, bool repair_at_end) {
+  const std::vector<int>& alone = s.soft.alone;
+  // (A body alone costs about as much as kBodyGrain / 8 bodies' sub-step.)
+  const auto one = [&](int i) { integrate_body_alone(s, bodies, motion, h, substeps, repair_at_end, i); };
+  // (Up to 4D inlined whole, as integrate_substep_positions' sweep is.)
+  const auto one_inlined = [&](int i) __attribute__((flatten)) { one(i); };
+  s.workers.for_ranges(int(alone.size()), kBodyGrain / 8, [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
+      if constexpr (N <= 4)
+        one_inlined(alone[k]);
+      else
+        one(alone[k]);
+    }
+  });
 }
 
 // The sub-steps' velocities are the solver bodies', there is no split impulse, and which bodies move is
@@ -516,6 +562,8 @@ Lanes default_lanes() {
   template void integrate_velocities_apart<N>(ContactState<N>&, const std::vector<Body<N>>&,                      \
                                               const dynamics::Motion<N>&, double);                                \
   template void integrate_substep_positions<N>(ContactState<N>&, std::vector<Body<N>>&, double, bool);          \
+  template void integrate_alone<N>(ContactState<N>&, std::vector<Body<N>>&, const dynamics::Motion<N>&, double, int, \
+                                   bool);                                                                      \
   template void prepare_soft_contacts<N>(ContactState<N>&, const ContactSettings&, double);                         \
   template void solve_substep<N>(ContactState<N>&, std::vector<Body<N>>&, const ContactSettings&, double, bool); \
   template void track_substep_motion<N>(ContactState<N>&, const std::vector<Body<N>>&);                       \

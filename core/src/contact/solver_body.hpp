@@ -25,6 +25,9 @@ struct alignas(64) SolverBody {
   bool integrates = false;  // moves, with neither a torque nor a gyroscopic term (else it is apart)
   bool advances = false;    // not static and awake: the soft step's position update moves it
   bool apart = false;       // soft step: moves, and integrate_velocities_apart integrates its velocities
+  // Soft step: advances, and no constraint or grab uses it this step: integrate_alone takes it through
+  // every sub-step at once (its advances, integrates and apart are false through the sub-steps).
+  bool alone = false;
   // Soft step: the velocity change that the contacts' accumulated impulses make, the warm start of the
   // next sub-step (soft_step.cpp, warm_start_substep).
   Vec<N> warm_v = Vec<N>::Zero();
