@@ -23,7 +23,8 @@ bool flat_faced(const Shape<N>& shape) {
 }
 
 // An upper bound of how fast any point of the body moves (m/s): centre speed plus |w| times the radius
-// of the sphere about the centre of mass that holds its bounding box (at most the box's diagonal). Zero for a half-space (static).
+// of the sphere about the centre of mass that holds its bounding box (at most the box's diagonal). Zero
+// for a half-space (static).
 template <int N>
 double speed_bound(const ContactState<N>& s, const Body<N>& b, int i) {
   if (s.list.proxy[i] < 0) return 0.0;

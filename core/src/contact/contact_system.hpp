@@ -298,8 +298,8 @@ template <int N>
 void integrate_substep_positions(ContactState<N>& state, std::vector<Body<N>>& bodies, double h, bool repair_now);
 // The bodies alone (SolverBody::alone: no constraint or grab uses them this step) through all the step's
 // `substeps` sub-steps of h, body by body: velocities, then positions, and when repair_at_end the rotor
-// repaired after the last. Between the sub-steps nothing reads or changes such a body, so taking its
-// sub-steps together is the sub-step loop's arithmetic in another order: the same bits.
+// repaired after the last (dynamics::advance_alone). Between the sub-steps nothing reads or changes such
+// a body, so its sub-steps can be taken together, its angular velocity in the body frame throughout.
 template <int N>
 void integrate_alone(ContactState<N>& state, std::vector<Body<N>>& bodies, const dynamics::Motion<N>& motion,
                      double h, int substeps, bool repair_at_end);

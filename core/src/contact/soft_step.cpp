@@ -300,7 +300,7 @@ void prepare_soft_step(ContactState<N>& s, const std::vector<Body<N>>& bodies, c
     sb.apart = moving && body_frame && !sb.alone;  // (integrate_apart below)
     sb.integrates = moving && !body_frame && !sb.alone;
     if (sb.alone) sb.advances = false;
-    if (!moving || body_frame) return;
+    if (!moving || body_frame || sb.alone) return;
     sb.dv = h * (motion->gravity + b.force * b.inv_mass);
     sb.decay_v = 1.0 / (1.0 + h * b.linear_drag);
     sb.decay_w = 1.0 / (1.0 + h * b.angular_drag);
@@ -326,25 +326,18 @@ void integrate_velocities_apart(ContactState<N>& s, const std::vector<Body<N>>& 
   }
 }
 
-// One body alone through the step's sub-steps: each as the sub-step loop would take it, velocities
-// (integrate_velocity, or the step's constants: integrate_substep_velocity's arithmetic) then position.
+// One body alone through the step's sub-steps: a dynamic one by dynamics::advance_alone, a kinematic one
+// (whose velocities stay) sub-step by sub-step, as the sub-step loop would move it.
 template <int N>
 void integrate_body_alone(ContactState<N>& s, std::vector<Body<N>>& bodies, const dynamics::Motion<N>& motion,
                           double h, int substeps, bool repair_at_end, int i) {
   SolverBody<N>& sb = s.solver_bodies[i];
   Body<N>& b = bodies[i];
-  const bool moving = b.is_dynamic();
-  const dynamics::AngularModel<N>& model = s.soft.angular_models[i];
-  for (int k = 0; k < substeps; ++k) {
-    if (moving && model.body_frame) {
-      dynamics::integrate_velocity(b, model, motion, h, sb.v, sb.w);
-    } else if (moving) {
-      sb.v += sb.dv;
-      sb.v *= sb.decay_v;
-      sb.w *= sb.decay_w;
-    }
-    dynamics::advance_body(b, sb.v, sb.w, h, repair_at_end && k == substeps - 1);
+  if (b.is_dynamic()) {
+    dynamics::advance_alone(b, s.soft.angular_models[i], motion, h, substeps, repair_at_end, sb.v, sb.w);
+    return;
   }
+  for (int k = 0; k < substeps; ++k) dynamics::advance_body(b, sb.v, sb.w, h, repair_at_end && k == substeps - 1);
 }
 
 template <int N>
@@ -352,16 +345,8 @@ void integrate_alone(ContactState<N>& s, std::vector<Body<N>>& bodies, const dyn
                      int substeps, bool repair_at_end) {
   const std::vector<int>& alone = s.soft.alone;
   // (A body alone costs about as much as kBodyGrain / 8 bodies' sub-step.)
-  const auto one = [&](int i) { integrate_body_alone(s, bodies, motion, h, substeps, repair_at_end, i); };
-  // (Up to 4D inlined whole, as integrate_substep_positions' sweep is.)
-  const auto one_inlined = [&](int i) __attribute__((flatten)) { one(i); };
   s.workers.for_ranges(int(alone.size()), kBodyGrain / 8, [&](int begin, int end) {
-    for (int k = begin; k < end; ++k) {
-      if constexpr (N <= 4)
-        one_inlined(alone[k]);
-      else
-        one(alone[k]);
-    }
+    for (int k = begin; k < end; ++k) integrate_body_alone(s, bodies, motion, h, substeps, repair_at_end, alone[k]);
   });
 }
 

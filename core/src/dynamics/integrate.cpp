@@ -88,7 +88,8 @@ Bivector<N> gyroscopic_by_newton(const BivMat<N>& inertia, const Bivector<N>& w,
 template <int N>
 Bivector<N> gyroscopic_diagonal(const Bivector<N>& moments, const BivMat<N>& inertia, const Bivector<N>& w, double h) {
   Bivector<N> w2;
-  if (!midpoint_by_iteration<N>(moments, w, h, w2)) return gyroscopic_by_newton<N>(inertia, w, h, GyroscopicMethod::ImplicitMidpoint);
+  if (!midpoint_by_iteration<N>(moments, w, h, w2))
+    return gyroscopic_by_newton<N>(inertia, w, h, GyroscopicMethod::ImplicitMidpoint);
   // (the converged midpoint conserves w . I w; round-off may still raise it by an ulp)
   const double e0 = w.c.dot(moments.c.cwiseProduct(w.c)), e1 = w2.c.dot(moments.c.cwiseProduct(w2.c));
   if (e1 > e0) w2 *= std::sqrt(e0 / e1);
@@ -104,11 +105,6 @@ Bivector<N> gyroscopic_step(const BivMat<N>& inertia, const Bivector<N>& w, doub
 }
 
 namespace dynamics {
-
-template <int N>
-bool needs_body_frame(const Body<N>& b, const Motion<N>& motion) {
-  return !b.torque.c.isZero(0.0) || (motion.gyroscopic && !linalg::is_isotropic(b.inertia));
-}
 
 template <int N>
 AngularModel<N> angular_model(const Body<N>& b, const Motion<N>& motion) {
@@ -133,25 +129,61 @@ void integrate_velocity(const Body<N>& b, const AngularModel<N>& model, const Mo
   v += h * (motion.gravity + b.force * b.inv_mass);
   if (model.body_frame) {
     Bivector<N> wb = rotate_inverse(b.rotor, w);
-    if (model.torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
-    if (model.diagonal)
-      wb = gyroscopic_diagonal<N>(model.moments, b.inertia, wb, h);
-    else if (model.gyroscopic)
-      wb = gyroscopic_by_newton<N>(b.inertia, wb, h, motion.gyroscopic_method);
+    integrate_body_frame(b, model, motion, h, wb);
     w = rotate(b.rotor, wb);
   }
   v *= 1.0 / (1.0 + h * b.linear_drag);
   w *= 1.0 / (1.0 + h * b.angular_drag);
 }
 
+template <int N>
+void integrate_body_frame(const Body<N>& b, const AngularModel<N>& model, const Motion<N>& motion, double h,
+                          Bivector<N>& wb) {
+  if (model.torque) wb.c += h * (b.inv_inertia * rotate_inverse(b.rotor, b.torque).c);
+  if (model.diagonal)
+    wb = gyroscopic_diagonal<N>(model.moments, b.inertia, wb, h);
+  else if (model.gyroscopic)
+    wb = gyroscopic_by_newton<N>(b.inertia, wb, h, motion.gyroscopic_method);
+}
+
+template <int N>
+void advance_alone(Body<N>& b, const AngularModel<N>& model, const Motion<N>& motion, double h, int substeps,
+                   bool repair_at_end, Vec<N>& v, Bivector<N>& w) {
+  const Vec<N> dv = h * (motion.gravity + b.force * b.inv_mass);
+  const double decay_v = 1.0 / (1.0 + h * b.linear_drag), decay_w = 1.0 / (1.0 + h * b.angular_drag);
+  if (model.body_frame) {
+    Bivector<N> wb = rotate_inverse(b.rotor, w);
+    for (int k = 0; k < substeps; ++k) {
+      v = (v + dv) * decay_v;
+      integrate_body_frame(b, model, motion, h, wb);
+      wb *= decay_w;
+      b.center += h * v;
+      b.rotor = b.rotor * exp<N>(wb * (-0.5 * h));
+    }
+    if (repair_at_end) b.rotor = repair(b.rotor);
+    w = rotate(b.rotor, wb);
+    return;
+  }
+  Bivector<N> turned{};  // w_1 + ... + w_n
+  for (int k = 0; k < substeps; ++k) {
+    v = (v + dv) * decay_v;
+    w *= decay_w;
+    turned += w;
+    b.center += h * v;
+  }
+  b.rotor = exp<N>(turned * (-0.5 * h)) * b.rotor;
+  if (repair_at_end) b.rotor = repair(b.rotor);
+}
+
 }  // namespace dynamics
 
 #define WEDGE_INSTANTIATE(N)                                                                                 \
   template Bivector<N> gyroscopic_step<N>(const BivMat<N>&, const Bivector<N>&, double, GyroscopicMethod); \
-  template bool dynamics::needs_body_frame<N>(const Body<N>&, const dynamics::Motion<N>&);                  \
   template void dynamics::integrate_velocity<N>(const Body<N>&, const dynamics::Motion<N>&, double, Vec<N>&, \
                                                 Bivector<N>&);                                                \
   template dynamics::AngularModel<N> dynamics::angular_model<N>(const Body<N>&, const dynamics::Motion<N>&); \
+  template void dynamics::advance_alone<N>(Body<N>&, const dynamics::AngularModel<N>&, const dynamics::Motion<N>&, \
+                                           double, int, bool, Vec<N>&, Bivector<N>&);                              \
   template void dynamics::integrate_velocity<N>(const Body<N>&, const dynamics::AngularModel<N>&,             \
                                                 const dynamics::Motion<N>&, double, Vec<N>&, Bivector<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)

@@ -175,9 +175,12 @@ void check_replay_behaviour(const std::string& name, const Replay& r) {
     // A real phone held in the hand for a tremor test: gravity follows it, at the scene's magnitude,
     // mostly along +z (the phone is held flat: its accelerometer reads +1 g on z); no hand, so no
     // events; every toy slides off the table onto the floor and on along it (about 390 m in 9.4 s on
-    // the endless floor). On the floor: over the last second each toy's centre comes within 15 cm of it
-    // (the toys' half sizes are 8-10 cm; the table top is at 0.8 m) and never rises to the table's
-    // height. (At 84 m/s the 24-cell hops on its vertices: its height at one instant says little.)
+    // the endless floor, more than 10 m from the table). On the floor: over the last second each toy's
+    // centre comes within 15 cm of it (the toys' half sizes are 8-10 cm; the table top is at 0.8 m).
+    // The boxes slide on a face and the duocylinder rolls: they never rise 20 cm above the floor. The
+    // 24-cell, at 84 m/s, hops on its vertices under gravity's floor-normal part of 2.5 m/s^2, which
+    // lifts it 0.85 m for a 2 m/s vertical kick (seen: 0.95 m): it must not be thrown higher than 2 m
+    // (a 3.1 m/s kick, under 4% of its speed).
     CHECK(r.events.empty());
     CHECK(std::abs(norm_of(last["gravity"]) - 9.81) < 1e-9);
     const std::size_t states = r.states.size() - (r.states.back().contains("bodies") ? 0 : 1);
@@ -190,7 +193,7 @@ void check_replay_behaviour(const std::string& name, const Replay& r) {
         highest = std::max(highest, height(r.states[i], body));
       }
       CHECK(lowest < 0.15);
-      CHECK(highest < 0.8);
+      CHECK(highest < (body == "cell24" ? 2.0 : 0.3));
       CHECK(norm_of(body_in(last, body)["center"]) > 10.0);
     }
   } else {

@@ -100,13 +100,16 @@ RotorFactors<N> factorize(const Rotor<N>& r) {
   return f;
 }
 
-// Repairs drift: the nearest exact rotor with the same sign (R ~R = 1 to round-off).
+// Repairs drift: the nearest exact rotor with the same sign (R ~R = 1 to round-off). (factorize's
+// product, negated where the sign differs: negation is exact, so this is compose(factorize(r)) with
+// one product of the factors instead of two.)
 template <int N>
 Rotor<N> repair(const Rotor<N>& r) {
   if constexpr (N <= 3) {
     return r / r.norm();  // for N <= 3 every unit even element is a rotor
   } else {
-    return compose(factorize(r));
+    const Rotor<N> out = compose(factorize_matrix<N>(to_matrix(r)));
+    return out.c.dot(r.c) < 0.0 ? out * -1.0 : out;
   }
 }
 
