@@ -1,6 +1,7 @@
 // World step, body construction and diagnostics; explicitly instantiated for N = 2..6.
 #include "wedge/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -83,6 +84,8 @@ void check_contact_settings(const ContactSettings& c) {
   if (c.substeps < 1 || c.substeps > 64) throw Error("contact.substeps must be in 1..64");
   if (!finite_nonneg(c.contact_hertz) || !finite_nonneg(c.contact_damping_ratio) || !finite_nonneg(c.contact_push_speed))
     throw Error("contact.contact_hertz (Hz), contact_damping_ratio and contact_push_speed (m/s) must be finite and >= 0");
+  if (!finite_nonneg(c.joint_hertz) || !finite_nonneg(c.joint_damping_ratio))
+    throw Error("contact.joint_hertz (Hz) and joint_damping_ratio must be finite and >= 0");
   if (!finite_nonneg(c.restitution_threshold)) throw Error("contact.restitution_threshold must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.recycle_distance) || !finite_nonneg(c.recycle_angle))
     throw Error("contact.recycle_distance (m) and recycle_angle (rad) must be finite and >= 0");
@@ -126,6 +129,9 @@ World<N>::World(const WorldSettings<N>& settings)
 template <int N>
 void World<N>::set_settings(const WorldSettings<N>& settings) {
   check_world_settings(settings);
+  if (settings.contact.solver == ContactSolver::Paper && joint_count() > 0)
+    throw Error("contact.solver: the paper's contact solver has no joints, and this world has " +
+                std::to_string(joint_count()));
   set_gravity(settings.gravity);
   settings_ = settings;
   contact_->workers.resize(settings_.workers);
@@ -282,6 +288,155 @@ Vec<N> World<N>::grab_point(GrabId id) const {
   const GrabDef<N>& d = contact_->grabs[check(id)].def;
   const Body<N>& b = bodies_[d.body.index];
   return b.center + rotate(b.rotor, Vec<N>(d.local_point - b.local_center));
+}
+
+template <int N>
+std::uint32_t World<N>::check(JointId id) const {
+  const auto& slots = contact_->joints.slots;
+  if (id.index >= slots.size() || !slots[id.index].live || slots[id.index].generation != id.generation)
+    throw Error("joint id " + std::to_string(id.index) + "/" + std::to_string(id.generation) +
+                " is not a live joint of this world");
+  return id.index;
+}
+
+namespace {
+std::uint64_t joined_key(int a, int b) {
+  return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+}
+}  // namespace
+
+template <int N>
+contact::JointConstraint<N> World<N>::joint_bodies(const JointBodies<N>& def, JointType type) const {
+  if (settings_.contact.solver == ContactSolver::Paper)
+    throw Error("add_joint: the paper's contact solver (contact.solver \"paper\") has no joints; use the soft step");
+  const Body<N>& b = bodies_[check(def.body_b)];
+  const bool a_dynamic = def.body_a && bodies_[check(*def.body_a)].is_dynamic();
+  if (def.body_a && def.body_a->index == def.body_b.index)
+    throw Error("add_joint: body_a and body_b are the same body '" + names_[def.body_b.index] + "'");
+  if (!b.is_dynamic() && !a_dynamic)
+    throw Error("add_joint: neither body is dynamic ('" + names_[def.body_b.index] + "'" +
+                (def.body_a ? " and '" + names_[def.body_a->index] + "'" : std::string(" and the world")) + ")");
+  if (!all_finite(def.anchor_a) || !all_finite(def.anchor_b)) throw Error("add_joint: the anchors must be finite");
+  contact::JointConstraint<N> j;
+  j.type = type;
+  j.b = int(def.body_b.index);
+  j.local_b = def.anchor_b - b.local_center;
+  if (def.body_a) {
+    j.a = int(def.body_a->index);
+    j.local_a = def.anchor_a - bodies_[j.a].local_center;
+  } else {
+    j.local_a = def.anchor_a;
+  }
+  j.collide_connected = def.collide_connected;
+  return j;
+}
+
+template <int N>
+JointId World<N>::insert_joint(const contact::JointConstraint<N>& joint) {
+  auto& js = contact_->joints;
+  std::size_t slot = 0;
+  while (slot < js.slots.size() && js.slots[slot].live) ++slot;  // lowest free slot: a fixed, replayable order
+  if (slot == js.slots.size()) js.slots.emplace_back();
+  contact::JointConstraint<N>& j = js.slots[slot];
+  const std::uint32_t generation = j.generation + 1;
+  j = joint;
+  j.generation = generation;
+  j.live = true;
+  if (j.a >= 0 && !j.collide_connected) {
+    const std::uint64_t key = joined_key(j.a, j.b);
+    js.no_collide.insert(std::upper_bound(js.no_collide.begin(), js.no_collide.end(), key), key);
+  }
+  if (j.a >= 0) contact_->islands.wake_island(j.a);
+  contact_->islands.wake_island(j.b);
+  return JointId{std::uint32_t(slot), generation};
+}
+
+template <int N>
+JointId World<N>::add_joint(const PointJointDef<N>& def) {
+  return insert_joint(joint_bodies(def, JointType::Point));
+}
+
+template <int N>
+JointId World<N>::add_joint(const DistanceJointDef<N>& def) {
+  contact::JointConstraint<N> j = joint_bodies(def, JointType::Distance);
+  const auto finite_nonneg = [](double x) { return std::isfinite(x) && x >= 0.0; };
+  const auto anchor_a = [&] { return def.body_a ? bodies_[j.a].center + rotate(bodies_[j.a].rotor, j.local_a) : j.local_a; };
+  const Body<N>& b = bodies_[j.b];
+  j.length = def.length;
+  if (std::isfinite(def.length) && def.length < 0.0) j.length = (b.center + rotate(b.rotor, j.local_b) - anchor_a()).norm();
+  if (!def.spring) {
+    if (!(std::isfinite(j.length) && j.length >= 1e-4))
+      throw Error("add_joint: a distance joint's length must be finite and >= 0.1 mm (got " + std::to_string(j.length) +
+                  " m); anchors that meet are a point joint");
+    return insert_joint(j);
+  }
+  if (!finite_nonneg(def.frequency)) throw Error("add_joint: frequency must be finite and >= 0 (Hz)");
+  if (!finite_nonneg(def.damping_ratio)) throw Error("add_joint: damping_ratio must be finite and >= 0");
+  if (!finite_nonneg(def.min_length)) throw Error("add_joint: min_length must be finite and >= 0 (m)");
+  if (!(def.max_length >= def.min_length))
+    throw Error("add_joint: max_length (" + std::to_string(def.max_length) + " m) must be >= min_length (" +
+                std::to_string(def.min_length) + " m)");
+  if (!(std::isfinite(j.length) && j.length >= def.min_length && j.length <= def.max_length))
+    throw Error("add_joint: the spring's length (" + std::to_string(j.length) + " m) must lie in [min_length, max_length]");
+  j.spring = true;
+  j.frequency = def.frequency;
+  j.damping_ratio = def.damping_ratio;
+  j.min_length = def.min_length;
+  j.max_length = def.max_length;
+  return insert_joint(j);
+}
+
+template <int N>
+void World<N>::remove_joint(JointId id) {
+  auto& js = contact_->joints;
+  contact::JointConstraint<N>& j = js.slots[check(id)];
+  if (j.a >= 0 && !j.collide_connected) {
+    const auto at = std::lower_bound(js.no_collide.begin(), js.no_collide.end(), joined_key(j.a, j.b));
+    js.no_collide.erase(at);  // (one of the pair's keys: each joint that joins them added one)
+  }
+  if (j.a >= 0) contact_->islands.wake_island(j.a);
+  contact_->islands.wake_island(j.b);
+  const std::uint32_t generation = j.generation;
+  j = contact::JointConstraint<N>{};
+  j.generation = generation;
+}
+
+template <int N>
+bool World<N>::has_joint(JointId id) const {
+  const auto& slots = contact_->joints.slots;
+  return id.index < slots.size() && slots[id.index].live && slots[id.index].generation == id.generation;
+}
+
+template <int N>
+int World<N>::joint_count() const {
+  int count = 0;
+  for (const auto& j : contact_->joints.slots) count += j.live ? 1 : 0;
+  return count;
+}
+
+template <int N>
+JointType World<N>::joint_type(JointId id) const {
+  return contact_->joints.slots[check(id)].type;
+}
+
+template <int N>
+Vec<N> World<N>::joint_anchor_a(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  if (j.a < 0) return j.local_a;
+  return bodies_[j.a].center + rotate(bodies_[j.a].rotor, j.local_a);
+}
+
+template <int N>
+Vec<N> World<N>::joint_anchor_b(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  return bodies_[j.b].center + rotate(bodies_[j.b].rotor, j.local_b);
+}
+
+template <int N>
+Vec<N> World<N>::joint_force(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  const double h = contact_->joints.h;
+  return h > 0.0 ? Vec<N>(contact::joint_impulse(j) / h) : Vec<N>(Vec<N>::Zero());
 }
 
 template <int N>

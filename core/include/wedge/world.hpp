@@ -31,6 +31,7 @@
 #include "wedge/body.hpp"
 #include "wedge/contact.hpp"
 #include "wedge/grab.hpp"
+#include "wedge/joint.hpp"
 #include "wedge/profile.hpp"
 
 namespace wedge {
@@ -80,6 +81,8 @@ struct RayHit {
 namespace contact {
 template <int N>
 struct ContactState;
+template <int N>
+struct JointConstraint;
 }
 
 template <int N>
@@ -153,6 +156,21 @@ class World {
   const GrabDef<N>& grab(GrabId id) const;
   Vec<N> grab_point(GrabId id) const;  // m, world: where the grabbed point of the body is now
 
+  // Joints (wedge/joint.hpp), solved by the soft step only. add_joint throws wedge::Error for an invalid
+  // definition (naming the field) and under the paper's solver (ContactSolver::Paper); the other calls
+  // throw for an id that was removed. Adding or removing a joint wakes its bodies.
+  JointId add_joint(const PointJointDef<N>& def);
+  JointId add_joint(const DistanceJointDef<N>& def);
+  void remove_joint(JointId id);
+  bool has_joint(JointId id) const;
+  int joint_count() const;  // live joints
+  JointType joint_type(JointId id) const;
+  Vec<N> joint_anchor_a(JointId id) const;  // m, world: where each anchor is now
+  Vec<N> joint_anchor_b(JointId id) const;
+  // N, world: the force the joint applied to body_b in the last sub-step (body_a took its opposite);
+  // zero before the joint's first step.
+  Vec<N> joint_force(JointId id) const;
+
   // Queries on the state (shapes as placed now; candidates culled by the broad phase's boxes of the
   // last step, which hold every body that has not been moved by hand since).
   // The body containing x (the lowest index if several), else the nearest within max_distance (ties:
@@ -194,6 +212,10 @@ class World {
   void clear_forces();
   std::uint32_t check(BodyId id) const;
   std::uint32_t check(GrabId id) const;
+  std::uint32_t check(JointId id) const;
+  // The checks every joint shares (bodies, anchors, the solver), then the joint in the lowest free slot.
+  contact::JointConstraint<N> joint_bodies(const JointBodies<N>& def, JointType type) const;
+  JointId insert_joint(const contact::JointConstraint<N>& joint);
 
   WorldSettings<N> settings_;
   std::vector<Body<N>> bodies_;

@@ -324,7 +324,7 @@ void load_solver_bodies(ContactState<N>& s, const std::vector<Body<N>>& bodies, 
 }
 
 // The world inverse inertia [R]_2 I^-1 [R]_2^T (two k x k products) of each non-isotropic body that a
-// constraint or a live grab uses this step; a body alone in the air needs none. Marked serially, turned
+// constraint, a live grab or a live joint uses this step; a body alone in the air needs none. Marked serially, turned
 // body by body.
 template <int N>
 void load_world_inertias(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
@@ -333,6 +333,11 @@ void load_world_inertias(ContactState<N>& s, const std::vector<Body<N>>& bodies)
   for (const Constraint<N>& c : s.graph.constraints) used[c.a] = used[c.b] = 1;
   for (const GrabConstraint<N>& g : s.grabs)
     if (g.live) used[g.def.body.index] = 1;
+  for (const JointConstraint<N>& j : s.joints.slots)
+    if (j.live) {
+      used[j.b] = 1;
+      if (j.a >= 0) used[j.a] = 1;
+    }
   for_each_body(s, int(bodies.size()), [&](int i) {
     BodyMass<N>& m = s.masses[i];
     if (!m.world_pending || !used[i]) return;

@@ -15,7 +15,8 @@
 //   solve_continuous    continuous.cpp  a fast body put back where it would first reach a static shape
 //   update_islands      islands.cpp     islands of touching bodies, sleeping, the contact graph's levels
 //   report_events       events.cpp      began/stopped touching, sorted by pair
-// Grabs (grab.cpp) are solved inside process_contacts, before the contacts in every pass.
+// Grabs (grab.cpp) are solved inside process_contacts, before the contacts in every pass; in the soft
+// step, grabs and then joints (joints.cpp) before the contacts in each pass of each sub-step.
 // Everything runs in creation order of the bodies and sorted order of the pairs (the soft step's
 // constraints in colour order, itself a function of the pair order), so a step is a function of the
 // state alone (bit-identical on every run).
@@ -35,6 +36,7 @@
 #include "wedge/grab.hpp"
 #include "wedge/profile.hpp"
 #include "contact/constraint.hpp"
+#include "contact/joint.hpp"
 #include "contact/pair.hpp"
 #include "contact/solver_body.hpp"
 #include "contact/wide.hpp"
@@ -147,6 +149,18 @@ struct Events {
   std::vector<ContactEndEvent> end, ended;  // ended: pairs dropped by the broad phase this step (pairs.cpp)
 };
 
+// The joints (joints.cpp; World adds and removes them): slots, solved in slot order.
+template <int N>
+struct JointSolver {
+  std::vector<JointConstraint<N>> slots;
+  // The joined pairs whose bodies do not collide (JointBodies::collide_connected false), as sorted keys
+  // (a << 32 | b, a < b), which the pair list leaves out (pairs.cpp). World keeps it.
+  std::vector<std::uint64_t> no_collide;
+  bool any_active = false;  // this sub-step: some joint acts (prepare_joints)
+  double h = 0.0;           // s, the sub-step prepare_joints last prepared for (the reaction forces)
+  Softness soft;            // the joints' error correction in that sub-step
+};
+
 // Everything the contact stages keep between and during steps: each group's state, the solver's copies
 // of the bodies, which every stage reads, and the grabs.
 template <int N>
@@ -163,6 +177,7 @@ struct ContactState {
   std::vector<char> inertia_used;            // per body: a constraint or a grab uses its masses this step
   std::vector<GrabConstraint<N>> grabs;      // slots, solved in slot order (grab.cpp)
   std::vector<char> driven;                  // per body: held by an active grab this step
+  JointSolver<N> joints;
   parallel::Workers workers;                 // WorldSettings::workers, set by World::step
 };
 
@@ -277,6 +292,18 @@ template <int N>
 void warm_start_grabs(ContactState<N>& state);
 template <int N>
 double solve_grabs(ContactState<N>& state);
+// joints.cpp (soft step only): each sub-step, every live joint's lever arms, error and masses from the
+// bodies' poses (true if one acts), its accumulated impulses applied, and one pass (use_bias: the solve
+// pass, else the relax pass). joint_impulse: the accumulated impulse on body b (N s, world).
+template <int N>
+bool prepare_joints(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
+                    double h);
+template <int N>
+void warm_start_joints(ContactState<N>& state);
+template <int N>
+void solve_joints(ContactState<N>& state, const std::vector<Body<N>>& bodies, bool use_bias);
+template <int N>
+Vec<N> joint_impulse(const JointConstraint<N>& joint);
 // soft_step.cpp: the SoftStep solver's stages. World::step runs prepare_soft_step, then per sub-step
 // integrate_velocities_apart, solve_substep(use_bias = true) (the other bodies' velocity integration
 // first, integrate_substep_velocity), integrate_substep_positions (with track_body_motion) and

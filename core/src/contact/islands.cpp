@@ -95,7 +95,7 @@ void compute_levels(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   s.paper.shock_order.swap(s.paper.shock_scratch);
 }
 
-// Islands: dynamic bodies joined by contact points. A body is still while its centre and the rim of its
+// Islands: dynamic bodies joined by contact points or joints. A body is still while its centre and the rim of its
 // bounding sphere move slower than sleep_linear_speed (and no moving kinematic body touches it); an
 // island whose bodies have all been still for time_to_sleep falls asleep, velocities set to zero.
 template <int N>
@@ -129,6 +129,17 @@ void update_islands(ContactState<N>& s, std::vector<Body<N>>& bodies, const Cont
       unite(s.islands.union_parent, c.a, c.b);
     } else {
       const int other = ma ? c.b : c.a, self = ma ? c.a : c.b;
+      if (moving_kinematic(bodies[other])) s.islands.sleep_time[self] = 0.0;
+    }
+  }
+  // Joined bodies sleep and wake together (a joint to a moving kinematic body keeps its body awake).
+  for (const JointConstraint<N>& j : s.joints.slots) {
+    if (!j.live || j.a < 0) continue;
+    const bool ma = movable(j.a), mb = movable(j.b);
+    if (ma && mb) {
+      unite(s.islands.union_parent, j.a, j.b);
+    } else if (ma != mb) {
+      const int other = ma ? j.b : j.a, self = ma ? j.a : j.b;
       if (moving_kinematic(bodies[other])) s.islands.sleep_time[self] = 0.0;
     }
   }

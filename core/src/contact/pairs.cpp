@@ -59,10 +59,16 @@ void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   // Usually (a resting heap) the list is unchanged: keep it rather than copy every pair (4D: kilobytes),
   // which the keys tell without reading the pairs.
   const auto key = [](std::uint32_t a, std::uint32_t b) { return std::uint64_t{a} << 32 | b; };
+  // A pair of bodies that never collide: neither dynamic, or joined by a joint that says so.
+  const std::vector<std::uint64_t>& joined = s.joints.no_collide;
+  const auto skip = [&](std::uint32_t a, std::uint32_t b) {
+    return (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) ||
+           (!joined.empty() && std::binary_search(joined.begin(), joined.end(), key(a, b)));
+  };
   const auto unchanged = [&] {
     std::size_t k = 0;
     for (const auto& [a, b] : s.list.candidate_pairs) {
-      if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
+      if (skip(a, b)) continue;
       if (k == s.list.pair_keys.size() || s.list.pair_keys[k] != key(a, b)) return false;
       ++k;
     }
@@ -75,7 +81,7 @@ void merge_pairs(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
     if (p.touching) s.events.ended.push_back({BodyId{p.a}, BodyId{p.b}});
   };
   for (const auto& [a, b] : s.list.candidate_pairs) {
-    if (!bodies[a].is_dynamic() && !bodies[b].is_dynamic()) continue;
+    if (skip(a, b)) continue;
     while (old < s.list.pairs.size() && (s.list.pairs[old].a < a || (s.list.pairs[old].a == a && s.list.pairs[old].b < b)))
       drop(s.list.pairs[old++]);
     if (old < s.list.pairs.size() && s.list.pairs[old].a == a && s.list.pairs[old].b == b) {

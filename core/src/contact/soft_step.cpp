@@ -1,6 +1,6 @@
 // The soft step (Catto, "Solver2D" 2024 and Box2D v3): each step is taken as sub-steps, and in each
 //   integrate_velocities   gravity and forces (dynamics/integrate.hpp)
-//   solve (use_bias)       grabs, then contacts: soft normal constraints that push penetration out at
+//   solve (use_bias)       grabs, joints, then contacts: soft normal constraints that push penetration out at
 //                          a spring's rate, friction in the Coulomb cone; warm started
 //   integrate_positions    x += h v, R <- exp(-h w/2) R
 //   relax                  the same passes without the push, so the push leaves no velocity behind
@@ -422,11 +422,12 @@ void flush_pass_change(ContactState<N>& s) {
 template <int N>
 void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const ContactSettings& settings, double h,
                    bool use_bias) {
-  bool grabs = false;
+  bool grabs = false, joints = false;
   if (use_bias) {
     grabs = prepare_grabs(s, bodies, h);
-    // After the first sub-step, without grabs, the velocity update joins the warm start's sweep.
-    const bool fused = !s.graph.constraints.empty() && !grabs && s.soft.substep > 0;
+    joints = prepare_joints(s, bodies, settings, h);
+    // After the first sub-step, without grabs or joints, the velocity update joins the warm start's sweep.
+    const bool fused = !s.graph.constraints.empty() && !grabs && !joints && s.soft.substep > 0;
     // (The last relax pass's changes join warm_v first, before the velocities move on: see
     // finish_pass. integrate_velocities_apart has added those of the bodies apart.)
     const bool pending = s.soft.pass_change_pending;
@@ -439,12 +440,14 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
         add_pending(s.solver_bodies[i]);
         integrate_substep_velocity(s.solver_bodies[i]);
       });
-    if (s.graph.constraints.empty() && !grabs) return;
+    if (s.graph.constraints.empty() && !grabs && !joints) return;
     if (!fused) {
       if (grabs) warm_start_grabs(s);
+      if (joints) warm_start_joints(s);
       warm_start_substep(s);
       if (grabs) solve_grabs(s);
-      // (The grabs' impulses are left out of warm_v: they warm start on their own.)
+      if (joints) solve_joints(s, bodies, true);
+      // (The grabs' and joints' impulses are left out of warm_v: they warm start on their own.)
       snapshot_velocities(s);
     } else {
       // integrate_substep_velocity, warm_start_substep and snapshot_velocities in one sweep.
@@ -460,9 +463,11 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
   } else {
     if (s.soft.solve_finish_pending) finish_pass(s);  // (integrate_substep_positions does it as it moves the bodies)
     grabs = !s.driven.empty();
-    if (s.graph.constraints.empty() && !grabs) return;
-    if (grabs) {
-      solve_grabs(s);
+    joints = s.joints.any_active;
+    if (s.graph.constraints.empty() && !grabs && !joints) return;
+    if (grabs || joints) {
+      if (grabs) solve_grabs(s);
+      if (joints) solve_joints(s, bodies, false);
       snapshot_velocities(s);
     }  // (else v0 = v since the solve pass: finish_pass)
   }
