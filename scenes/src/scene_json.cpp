@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <set>
+#include <map>
+#include <variant>
 
 #include "wedge/error.hpp"
+#include "wedge/collision/aabb.hpp"
 #include "wedge/ga/products.hpp"
 
 namespace wedge::scenes {
@@ -122,6 +124,8 @@ ContactSettings read_contact_settings(const Node& node) {
   c.contact_hertz = read_ranged(obj, "contact_hertz", c.contact_hertz, 0.0, 1e6, ">= 0 Hz");
   c.contact_damping_ratio = read_ranged(obj, "contact_damping_ratio", c.contact_damping_ratio, 0.0, 1e6, ">= 0");
   c.contact_push_speed = read_ranged(obj, "contact_push_speed", c.contact_push_speed, 0.0, 1e6, ">= 0 m/s");
+  c.joint_hertz = read_ranged(obj, "joint_hertz", c.joint_hertz, 0.0, 1e6, ">= 0 Hz");
+  c.joint_damping_ratio = read_ranged(obj, "joint_damping_ratio", c.joint_damping_ratio, 0.0, 1e6, ">= 0");
   c.restitution_threshold = read_ranged(obj, "restitution_threshold", c.restitution_threshold, 0.0, 1e6, ">= 0 m/s");
   c.recycle_distance = read_ranged(obj, "recycle_distance", c.recycle_distance, 0.0, 1e3, "in [0, 1000] m");
   c.recycle_angle = read_ranged(obj, "recycle_angle", c.recycle_angle, 0.0, 3.2, "in [0, 3.2] rad");
@@ -228,6 +232,72 @@ SceneBody<N> read_body(const Node& node, int index) {
   return SceneBody<N>{std::move(def), std::move(shape), density, mp, material, color};
 }
 
+// A body of a joint, by name.
+std::uint32_t joint_body(const Node& node, const std::map<std::string, std::uint32_t>& index) {
+  const std::string name = node.string();
+  const auto it = index.find(name);
+  if (it == index.end()) node.fail("no body is named \"" + name + "\"");
+  return it->second;
+}
+
+// An anchor must lie on or near its body: within its shape's box grown by the box's half-diagonal
+// (an anchor metres off a 10 cm link is a typo, and would make a lever of it). Halfspaces: anywhere.
+template <int N>
+void check_anchor(const Node& node, const Vec<N>& anchor, const SceneBody<N>& body) {
+  if (!body.shape.bounded()) return;
+  const Aabb<N> box = world_aabb(body.shape, Vec<N>(Vec<N>::Zero()), Rotor<N>::identity());
+  const Vec<N> half = 0.5 * (box.hi - box.lo);
+  const Vec<N> outside = (anchor - 0.5 * (box.hi + box.lo)).cwiseAbs() - half;
+  const double distance = outside.cwiseMax(0.0).norm();
+  if (distance > half.norm())
+    node.fail("is " + format_number(distance) + " m outside body \"" + body.def.name + "\" (whose box has half-diagonal " +
+              format_number(half.norm()) + " m): an anchor lies on or near its body, in the body's frame");
+}
+
+template <int N>
+SceneJoint<N> read_joint(const Node& node, const std::map<std::string, std::uint32_t>& index,
+                         const std::vector<SceneBody<N>>& bodies) {
+  ObjectReader obj(node);
+  const Node type_node = obj.required("type");
+  const std::string type = type_node.string();
+  JointBodies<N> jb;
+  if (auto n = obj.optional("body_a")) jb.body_a = BodyId{joint_body(*n, index)};  // absent: the world
+  const Node body_b = obj.required("body_b");
+  jb.body_b = BodyId{joint_body(body_b, index)};
+  if (auto n = obj.optional("anchor_a")) {
+    jb.anchor_a = n->vec<N>();
+    if (jb.body_a) check_anchor<N>(*n, jb.anchor_a, bodies[jb.body_a->index]);
+  }
+  if (auto n = obj.optional("anchor_b")) {
+    jb.anchor_b = n->vec<N>();
+    check_anchor<N>(*n, jb.anchor_b, bodies[jb.body_b.index]);
+  }
+  jb.collide_connected = obj.boolean_or("collide_connected", false);
+  if (type == "point") {
+    obj.finish();
+    return PointJointDef<N>{jb};
+  }
+  if (type != "distance") type_node.fail("must be \"point\" or \"distance\" (got \"" + type + "\")");
+  DistanceJointDef<N> d{jb};
+  d.spring = obj.boolean_or("spring", false);
+  d.length = d.spring ? read_ranged(obj, "length", -1.0, 0.0, HUGE_VAL, ">= 0 m (leave it out for the anchors' distance)")
+                      : read_ranged(obj, "length", -1.0, 1e-4, HUGE_VAL,
+                                    ">= 0.0001 m (leave it out for the anchors' distance)");
+  d.frequency = read_ranged(obj, "frequency", 0.0, 0.0, 1e6, ">= 0 Hz");
+  d.damping_ratio = read_ranged(obj, "damping_ratio", 0.0, 0.0, 1e6, ">= 0");
+  d.min_length = read_ranged(obj, "min_length", 0.0, 0.0, HUGE_VAL, ">= 0 m");
+  const std::optional<Node> max_node = obj.optional("max_length");
+  if (max_node) {
+    d.max_length = max_node->number();
+    if (!(d.max_length >= d.min_length))
+      max_node->fail("must be >= min_length (" + format_number(d.min_length) + " m) (got " + max_node->json().dump() + ")");
+  }
+  obj.finish();
+  if (!d.spring && (d.frequency != 0.0 || d.min_length != 0.0 || max_node))
+    node.fail("frequency, damping_ratio, min_length and max_length are a spring's: add \"spring\": true");
+  return d;
+}
+
 }  // namespace
 
 int read_dim(const Json& doc, const std::string& file) {
@@ -275,14 +345,20 @@ Scene<N> load_scene(const Json& doc, const std::string& file) {
     if (auto n = obj.optional("view")) scene.view = read_view(*n);
     if (auto n = obj.optional("interaction")) scene.interaction = read_interaction<N>(*n);
     const Node bodies = obj.required("bodies");
+    const std::optional<Node> joints = obj.optional("joints");
     obj.finish();
 
-    std::set<std::string> names;
+    std::map<std::string, std::uint32_t> names;
     const std::vector<Node> list = bodies.array();
     for (std::size_t i = 0; i < list.size(); ++i) {
       scene.bodies.push_back(read_body<N>(list[i], int(i)));
       const std::string& name = scene.bodies.back().def.name;
-      if (!names.insert(name).second) list[i].fail("duplicate body name \"" + name + "\"");
+      if (!names.emplace(name, std::uint32_t(i)).second) list[i].fail("duplicate body name \"" + name + "\"");
+    }
+    if (joints) {
+      if (scene.settings.contact.solver == ContactSolver::Paper)
+        joints->fail("the paper's contact solver (contact.solver \"paper\") has no joints");
+      for (const Node& j : joints->array()) scene.joints.push_back(read_joint<N>(j, names, scene.bodies));
     }
     return scene;
   });
@@ -298,6 +374,9 @@ World<N> Scene<N>::make_world(const std::string& file) const {
       def.material = bodies[i].material;
       world.add_body(def);
     });
+  for (std::size_t i = 0; i < joints.size(); ++i)
+    with_file_context(file, index_path("joints", i),
+                      [&] { std::visit([&](const auto& def) { world.add_joint(def); }, joints[i]); });
   return world;
 }
 

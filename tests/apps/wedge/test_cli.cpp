@@ -349,6 +349,25 @@ TEST_CASE("wedge: bad input exits with 2, names the file, writes nothing", "[cli
       {"unknown solver", R"({"dim": 2, "contact": {"solver": "tgs"}, "bodies": []})", "--steps 1",
        "contact.solver: must be \"soft_step\" or \"paper\""},
       {"zero substeps", R"({"dim": 2, "contact": {"substeps": 0}, "bodies": []})", "--steps 1", "contact.substeps"},
+      {"joint to an unknown body", R"({"dim": 2, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}}],
+         "joints": [{"type": "point", "body_b": "b"}]})", "--steps 1", "joints[0].body_b: no body is named \"b\""},
+      {"joint of an unknown type", R"({"dim": 2, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 1}}],
+         "joints": [{"type": "hinge", "body_b": "a"}]})", "--steps 1", "joints[0].type: must be \"point\" or \"distance\""},
+      {"joint anchor far from its body", R"({"dim": 3, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.1}}],
+         "joints": [{"type": "point", "body_b": "a", "anchor_b": [5, 0, 0]}]})", "--steps 1",
+       "joints[0].anchor_b: is 4.9 m outside body \"a\""},
+      {"rope shorter than its minimum", R"({"dim": 2, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.1}}],
+         "joints": [{"type": "distance", "body_b": "a", "anchor_a": [0, 1], "spring": true, "min_length": 2,
+         "max_length": 1}]})", "--steps 1", "joints[0].max_length: must be >= min_length"},
+      {"limits without a spring", R"({"dim": 2, "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.1}}],
+         "joints": [{"type": "distance", "body_b": "a", "anchor_a": [0, 1], "max_length": 1}]})", "--steps 1",
+       "joints[0]: frequency, damping_ratio, min_length and max_length are a spring's"},
+      {"joint of two static bodies", R"({"dim": 2, "bodies": [{"name": "a", "static": true, "shape": {"type": "sphere", "radius": 1}},
+         {"name": "b", "static": true, "shape": {"type": "sphere", "radius": 1}}],
+         "joints": [{"type": "point", "body_a": "a", "body_b": "b"}]})", "--steps 1", "joints[0]: add_joint: neither body is dynamic"},
+      {"joints under the paper's solver", R"({"dim": 2, "contact": {"solver": "paper"},
+         "bodies": [{"name": "a", "shape": {"type": "sphere", "radius": 0.1}}],
+         "joints": [{"type": "point", "body_b": "a"}]})", "--steps 1", "joints: the paper's contact solver"},
       {"negative contact hertz", R"({"dim": 2, "contact": {"contact_hertz": -30}, "bodies": []})", "--steps 1",
        "contact.contact_hertz"},
       {"negative recycle distance", R"({"dim": 2, "contact": {"recycle_distance": -0.1}, "bodies": []})", "--steps 1",
@@ -706,6 +725,53 @@ void check_shipped_scene_physics(const std::string& scene, const json& first, co
     CHECK(boxes.size() == 210);
     check_settles(first, last, boxes);
     for (const std::string& name : boxes) check_height_kept(first, last, name, 2e-2);
+  } else if (scene == "pendulums_4d.json") {
+    // Frictionless pendulums keep their energy (to 0.5% over 5 s; the soft step's joints lose a little
+    // to their springs); the rod and the pins hold to 1 mm; each pendulum stays in its plane: the bob in
+    // the plane of y and (x + w)/sqrt(2) through its pivot, the double pendulum in the x-y plane.
+    CHECK(close_rel(last["energy"].get<double>(), first["energy"].get<double>(), 5e-3));
+    const auto center = [&](const char* name) {
+      const json& c = (*find_body(last, name))["center"];
+      std::vector<double> v;
+      for (const auto& x : c) v.push_back(x.get<double>());
+      return v;
+    };
+    const auto distance = [](const std::vector<double>& a, const std::vector<double>& b) {
+      double d = 0.0;
+      for (std::size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]);
+      return std::sqrt(d);
+    };
+    const std::vector<double> bob = center("bob"), upper = center("upper"), lower = center("lower");
+    CHECK(std::abs(distance(bob, {0.0, 2.0, -0.6, 0.0}) - 1.0) < 1e-3);
+    CHECK(std::abs(bob[0] - bob[3]) < 1e-9);
+    CHECK(bob[2] == -0.6);
+    CHECK(distance(upper, {0.0, 1.9, 0.6, 0.0}) == Approx(0.3).margin(1e-3));
+    CHECK(distance(upper, lower) < 0.6 + 1e-3);
+    for (const auto& c : {upper, lower}) {
+      CHECK(c[2] == 0.6);
+      CHECK(c[3] == 0.0);
+    }
+  } else if (scene == "chain_4d.json") {
+    // The pins hold: each link's centre within its half-length (8 cm) of its pin, each pair of
+    // neighbours within a link's length, to 2 mm while the chain whips; the chain has fallen and
+    // swung, and its collisions only took energy.
+    const auto links = names_with_prefix(last, "link_");
+    REQUIRE(links.size() == 12);
+    std::vector<std::vector<double>> c;
+    for (const std::string& name : links) {
+      std::vector<double> v;
+      for (const auto& x : (*find_body(last, name))["center"]) v.push_back(x.get<double>());
+      c.push_back(v);
+    }
+    const auto distance = [](const std::vector<double>& a, const std::vector<double>& b) {
+      double d = 0.0;
+      for (std::size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]);
+      return std::sqrt(d);
+    };
+    CHECK(distance(c[0], {0.0, 1.975, 0.0, 0.0}) < 0.08 + 2e-3);
+    for (std::size_t i = 1; i < c.size(); ++i) CHECK(distance(c[i - 1], c[i]) < 0.16 + 2e-3);
+    CHECK(c.back()[1] < 1.5);
+    CHECK(last["energy"].get<double>() < first["energy"].get<double>());
   } else {
     FAIL("shipped scene " << scene << " has no physical check beside its hash: add one here");
   }

@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "wedge/scenes/error.hpp"
@@ -56,15 +57,22 @@ struct SceneInteraction {
   double gravity_tilt = 15.0;      // degrees, [0, 90]
 };
 
+// A joint ("joints", docs/scene-format.md): its definition, the bodies given as their indices in
+// Scene::bodies (the BodyIds make_world gives them).
+template <int N>
+using SceneJoint = std::variant<PointJointDef<N>, DistanceJointDef<N>>;
+
 template <int N>
 struct Scene {
   WorldSettings<N> settings;
   double timestep = kDefaultTimestep;  // s
   std::vector<SceneBody<N>> bodies;
+  std::vector<SceneJoint<N>> joints;
   SceneView view;
   SceneInteraction<N> interaction;
 
-  // A world holding every body, in file order (throws SceneError naming the file and body on error).
+  // A world holding every body, then every joint, in file order (throws SceneError naming the file and
+  // the body or joint on error).
   World<N> make_world(const std::string& file) const;
 };
 
