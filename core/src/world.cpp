@@ -387,6 +387,76 @@ JointId World<N>::add_joint(const DistanceJointDef<N>& def) {
 }
 
 template <int N>
+Rotor<N> World<N>::joint_rotor_a(const contact::JointConstraint<N>& j) const {
+  return j.a >= 0 ? bodies_[j.a].rotor : Rotor<N>::identity();
+}
+
+template <int N>
+JointId World<N>::add_joint(const RevoluteJointDef<N>& def) {
+  contact::JointConstraint<N> j = joint_bodies(def, JointType::Revolute);
+  const auto orthonormal = [](const Vec<N>& u, const Vec<N>& v) {
+    return all_finite(u) && all_finite(v) && std::abs(u.norm() - 1.0) < 1e-9 && std::abs(v.norm() - 1.0) < 1e-9 &&
+           std::abs(u.dot(v)) < 1e-9;
+  };
+  if (!orthonormal(def.plane_u_a, def.plane_v_a))
+    throw Error("add_joint: plane_u_a and plane_v_a must be orthonormal (unit length, at right angles, to 1e-9)");
+  if (!orthonormal(def.plane_u_b, def.plane_v_b))
+    throw Error("add_joint: plane_u_b and plane_v_b must be orthonormal (unit length, at right angles, to 1e-9)");
+  const Rotor<N> ra = joint_rotor_a(j), rb = bodies_[j.b].rotor;
+  const Bivector<N> plane_a = rotate(ra, outer<N>(def.plane_u_a, def.plane_v_a));
+  const Bivector<N> plane_b = rotate(rb, outer<N>(def.plane_u_b, def.plane_v_b));
+  if ((plane_a - plane_b).norm() > 1e-6)
+    throw Error("add_joint: the revolute joint's planes of body_a and body_b are not the same plane now (they differ by " +
+                std::to_string((plane_a - plane_b).norm()) + "); the angle is measured from where they meet");
+  if (!(std::isfinite(def.lower_angle) && std::isfinite(def.upper_angle) && def.lower_angle <= def.upper_angle))
+    throw Error("add_joint: lower_angle and upper_angle must be finite, lower <= upper (rad)");
+  if (!std::isfinite(def.motor_speed)) throw Error("add_joint: motor_speed must be finite (rad/s)");
+  if (!(std::isfinite(def.max_motor_torque) && def.max_motor_torque >= 0.0))
+    throw Error("add_joint: max_motor_torque must be finite and >= 0 (N m)");
+  j.reference = reverse(ra) * rb;
+  j.plane_local = outer<N>(def.plane_u_a, def.plane_v_a);
+  j.u_a = def.plane_u_a;
+  j.v_a = def.plane_v_a;
+  j.u_b = def.plane_u_b;
+  const Vec<N> ub = rotate(rb, def.plane_u_b);
+  j.angle_offset = std::atan2(ub.dot(rotate(ra, def.plane_v_a)), ub.dot(rotate(ra, def.plane_u_a)));
+  j.limit = def.limit;
+  j.lower_angle = def.lower_angle;
+  j.upper_angle = def.upper_angle;
+  j.motor = def.motor;
+  j.motor_speed = def.motor_speed;
+  j.max_motor_torque = def.max_motor_torque;
+  return insert_joint(j);
+}
+
+template <int N>
+JointId World<N>::add_joint(const WeldJointDef<N>& def) {
+  contact::JointConstraint<N> j = joint_bodies(def, JointType::Weld);
+  if (!(std::isfinite(def.frequency) && def.frequency >= 0.0)) throw Error("add_joint: frequency must be finite and >= 0 (Hz)");
+  if (!(std::isfinite(def.damping_ratio) && def.damping_ratio >= 0.0))
+    throw Error("add_joint: damping_ratio must be finite and >= 0");
+  j.reference = reverse(joint_rotor_a(j)) * bodies_[j.b].rotor;
+  j.spring = def.frequency > 0.0;
+  j.frequency = def.frequency;
+  j.damping_ratio = def.damping_ratio;
+  return insert_joint(j);
+}
+
+template <int N>
+Bivector<N> World<N>::joint_torque(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  const double h = contact_->joints.h;
+  return h > 0.0 ? Bivector<N>(contact::joint_turn_impulse(j) * (1.0 / h)) : Bivector<N>{};
+}
+
+template <int N>
+double World<N>::joint_angle(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  if (j.type != JointType::Revolute) throw Error("joint_angle: joint " + std::to_string(id.index) + " is not a revolute joint");
+  return j.angle;
+}
+
+template <int N>
 void World<N>::remove_joint(JointId id) {
   auto& js = contact_->joints;
   contact::JointConstraint<N>& j = js.slots[check(id)];

@@ -277,7 +277,45 @@ SceneJoint<N> read_joint(const Node& node, const std::map<std::string, std::uint
     obj.finish();
     return PointJointDef<N>{jb};
   }
-  if (type != "distance") type_node.fail("must be \"point\" or \"distance\" (got \"" + type + "\")");
+  if (type == "revolute") {
+    RevoluteJointDef<N> r{jb};
+    if (auto n = obj.optional("plane_a")) {
+      const std::vector<Node> uv = n->array();
+      if (uv.size() != 2) n->fail("must be two vectors, u and v (got " + std::to_string(uv.size()) + ")");
+      r.plane_u_a = uv[0].vec<N>();
+      r.plane_v_a = uv[1].vec<N>();
+    }
+    if (auto n = obj.optional("plane_b")) {
+      const std::vector<Node> uv = n->array();
+      if (uv.size() != 2) n->fail("must be two vectors, u and v (got " + std::to_string(uv.size()) + ")");
+      r.plane_u_b = uv[0].vec<N>();
+      r.plane_v_b = uv[1].vec<N>();
+    }
+    r.limit = obj.boolean_or("limit", false);
+    r.lower_angle = read_ranged(obj, "lower_angle", 0.0, -1e6, 1e6, "a finite angle in rad");
+    const std::optional<Node> upper = obj.optional("upper_angle");
+    if (upper) {
+      r.upper_angle = upper->number();
+      if (!(r.upper_angle >= r.lower_angle && r.upper_angle <= 1e6))
+        upper->fail("must be >= lower_angle (" + format_number(r.lower_angle) + " rad) (got " + upper->json().dump() + ")");
+    } else if (r.lower_angle > 0.0) {
+      node.fail("lower_angle is above the default upper_angle 0: give upper_angle");
+    }
+    r.motor = obj.boolean_or("motor", false);
+    r.motor_speed = read_ranged(obj, "motor_speed", 0.0, -1e6, 1e6, "a finite speed in rad/s");
+    r.max_motor_torque = read_ranged(obj, "max_motor_torque", 0.0, 0.0, HUGE_VAL, ">= 0 N m");
+    obj.finish();
+    return r;
+  }
+  if (type == "weld") {
+    WeldJointDef<N> w{jb};
+    w.frequency = read_ranged(obj, "frequency", 0.0, 0.0, 1e6, ">= 0 Hz (0: rigid)");
+    w.damping_ratio = read_ranged(obj, "damping_ratio", 1.0, 0.0, 1e6, ">= 0");
+    obj.finish();
+    return w;
+  }
+  if (type != "distance")
+    type_node.fail("must be \"point\", \"distance\", \"revolute\" or \"weld\" (got \"" + type + "\")");
   DistanceJointDef<N> d{jb};
   d.spring = obj.boolean_or("spring", false);
   d.length = d.spring ? read_ranged(obj, "length", -1.0, 0.0, HUGE_VAL, ">= 0 m (leave it out for the anchors' distance)")

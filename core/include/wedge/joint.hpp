@@ -5,6 +5,10 @@
 //   PointJointDef     ball and socket: the two anchors coincide, every relative rotation is free.
 //   DistanceJointDef  the anchors a fixed distance apart (a massless rod), or a rope between a minimum
 //                     and a maximum length, or a spring; every rotation is free.
+//   RevoluteJointDef  a point joint whose bodies may turn relative to each other only in one plane (in 3D
+//                     a hinge about the plane's normal; in 4D a door hinged on a 2-plane), with angle
+//                     limits and a motor.
+//   WeldJointDef      no relative motion at all, rigid or soft.
 //
 // Like contacts, a joint's position error is corrected by a stiff soft constraint (ContactSettings::
 // joint_hertz and joint_damping_ratio) in the solve pass, and the relax pass removes the velocity that
@@ -21,7 +25,7 @@
 
 namespace wedge {
 
-enum class JointType : std::uint8_t { Point, Distance };
+enum class JointType : std::uint8_t { Point, Distance, Revolute, Weld };
 
 // What every joint has: the bodies and where on them it holds, in each body's own frame (the shape's
 // frame, as BodyDef::position places it). Without body_a the joint holds body_b to the world, and
@@ -50,6 +54,32 @@ struct DistanceJointDef : JointBodies<N> {
   double damping_ratio = 0.0;    // >= 0, 1 is critical damping (spring only)
   double min_length = 0.0;       // m, >= 0 (spring only)
   double max_length = std::numeric_limits<double>::infinity();  // m, >= min_length (spring only)
+};
+
+// A point joint whose bodies may turn relative to each other only in one plane. The plane is given in
+// each body's frame by two orthonormal vectors; the two must be the same plane when the joint is added,
+// and the angle is measured from there: positive turns u toward v (body b relative to body a). With
+// `limit` the angle stays in [lower_angle, upper_angle]; with `motor` the joint drives the relative
+// angular speed in the plane toward motor_speed with at most max_motor_torque. In 2D the plane is the
+// only one (the defaults, x and y), and this is Box2D's revolute joint.
+template <int N>
+struct RevoluteJointDef : JointBodies<N> {
+  Vec<N> plane_u_a = Vec<N>::Unit(0), plane_v_a = Vec<N>::Unit(1);  // body_a's frame (world without body_a)
+  Vec<N> plane_u_b = Vec<N>::Unit(0), plane_v_b = Vec<N>::Unit(1);  // body_b's frame
+  bool limit = false;
+  double lower_angle = 0.0, upper_angle = 0.0;  // rad, lower <= upper
+  bool motor = false;
+  double motor_speed = 0.0;       // rad/s, in the plane (u toward v)
+  double max_motor_torque = 0.0;  // N m, >= 0
+};
+
+// No relative motion: the anchors coincide and the bodies keep their relative orientation from when the
+// joint is added. With frequency > 0 the weld is a spring (linear and angular) of that natural frequency
+// and damping ratio instead of rigid.
+template <int N>
+struct WeldJointDef : JointBodies<N> {
+  double frequency = 0.0;      // Hz, >= 0: 0 is rigid
+  double damping_ratio = 1.0;  // >= 0
 };
 
 // A handle to a joint: its slot and the generation it was made in, so a removed joint's id is refused.

@@ -161,6 +161,8 @@ class World {
   // throw for an id that was removed. Adding or removing a joint wakes its bodies.
   JointId add_joint(const PointJointDef<N>& def);
   JointId add_joint(const DistanceJointDef<N>& def);
+  JointId add_joint(const RevoluteJointDef<N>& def);
+  JointId add_joint(const WeldJointDef<N>& def);
   void remove_joint(JointId id);
   bool has_joint(JointId id) const;
   int joint_count() const;  // live joints
@@ -170,6 +172,12 @@ class World {
   // N, world: the force the joint applied to body_b in the last sub-step (body_a took its opposite);
   // zero before the joint's first step.
   Vec<N> joint_force(JointId id) const;
+  // N m, world: the torque the joint's angular rows applied to body_b in the last sub-step (besides
+  // joint_force at its anchor); zero for point and distance joints.
+  Bivector<N> joint_torque(JointId id) const;
+  // rad: a revolute joint's angle, body_b's turn relative to body_a in the plane since the joint was
+  // added (u toward v), as of the last step; throws for another kind of joint.
+  double joint_angle(JointId id) const;
 
   // Queries on the state (shapes as placed now; candidates culled by the broad phase's boxes of the
   // last step, which hold every body that has not been moved by hand since).
@@ -215,6 +223,7 @@ class World {
   std::uint32_t check(JointId id) const;
   // The checks every joint shares (bodies, anchors, the solver), then the joint in the lowest free slot.
   contact::JointConstraint<N> joint_bodies(const JointBodies<N>& def, JointType type) const;
+  Rotor<N> joint_rotor_a(const contact::JointConstraint<N>& joint) const;  // body a's rotor (the world's: 1)
   JointId insert_joint(const contact::JointConstraint<N>& joint);
 
   WorldSettings<N> settings_;

@@ -304,6 +304,9 @@ template <int N>
 void solve_joints(ContactState<N>& state, const std::vector<Body<N>>& bodies, bool use_bias);
 template <int N>
 Vec<N> joint_impulse(const JointConstraint<N>& joint);
+// The accumulated turn impulse on body b (N m s, world; zero for point and distance joints).
+template <int N>
+Bivector<N> joint_turn_impulse(const JointConstraint<N>& joint);
 // soft_step.cpp: the SoftStep solver's stages. World::step runs prepare_soft_step, then per sub-step
 // integrate_velocities_apart, solve_substep(use_bias = true) (the other bodies' velocity integration
 // first, integrate_substep_velocity), integrate_substep_positions (with track_body_motion) and

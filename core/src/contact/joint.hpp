@@ -26,6 +26,17 @@ struct JointConstraint {
   bool spring = false;
   double frequency = 0.0, damping_ratio = 0.0;
 
+  // Revolute and weld joints: body b's orientation relative to a's when the joint was added, ~R_a R_b
+  // (R_b with the world as a), and the revolute's plane: a unit bivector and two vectors in a's frame, one
+  // vector in b's (the angle is u_b's turn from u_a toward v_a, less angle_offset, its value when added).
+  Rotor<N> reference = Rotor<N>::identity();
+  Bivector<N> plane_local{};
+  Vec<N> u_a = Vec<N>::Zero(), v_a = Vec<N>::Zero(), u_b = Vec<N>::Zero();
+  double angle_offset = 0.0;
+  bool limit = false, motor = false;
+  double lower_angle = 0.0, upper_angle = 0.0, motor_speed = 0.0, max_motor_torque = 0.0;  // rad, rad/s, N m
+  double angle = 0.0;  // rad, revolute: the angle at the last placing (unwrapped: it may pass pi)
+
   // This sub-step (prepare_joints).
   bool active = false;                       // live, with a body that moves
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, world: the anchors from the centres of mass
@@ -34,13 +45,20 @@ struct JointConstraint {
   Vec<N> axis = Vec<N>::Zero();              // distance: the unit direction from anchor a to anchor b
   double distance = 0.0;                     // m, distance: |separation|
   double axial_mass = 0.0;                   // kg, distance: 1 / (axis^T K axis)
-  Softness spring_soft;                      // distance with a spring: its coefficients for the sub-step
+  Softness spring_soft;                      // distance with a spring, soft weld: its coefficients
+  Bivector<N> plane{};                       // revolute: the plane, world (unit)
+  Bivector<N> turn{};                        // revolute, weld: the turn (rad) that would bring b where it belongs
+  BivMat<N> angular_mass = BivMat<N>::Zero();  // revolute, weld: the angular rows' inverse effective mass
+  double plane_mass = 0.0;                   // revolute: 1 / (p . (I_a^-1 + I_b^-1) p), the plane's row
 
   // Accumulated impulses (N s) on body b (body a takes their opposite), kept between sub-steps and
   // steps: the warm start.
   Vec<N> linear_impulse = Vec<N>::Zero();    // point
   double impulse = 0.0;                      // distance: along the axis (rigid, or the spring)
   double lower_impulse = 0.0, upper_impulse = 0.0;  // distance: the limits' (>= 0; the upper pulls)
+  Bivector<N> angular_impulse{};             // N m s, revolute (out of the plane) and weld: on body b
+  double motor_impulse = 0.0;                // N m s, revolute: the motor's, in the plane
+  double lower_angle_impulse = 0.0, upper_angle_impulse = 0.0;  // N m s, revolute: the angle limits' (>= 0)
 };
 
 }  // namespace wedge::contact

@@ -16,10 +16,12 @@
 // mass), so the correction leaves no velocity behind.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "contact/contact_system.hpp"
 #include "linalg/fixed_size.hpp"
 #include "wedge/dimensions.hpp"
+#include "wedge/ga/exp_log.hpp"
 #include "wedge/softness.hpp"
 
 namespace wedge::contact {
@@ -75,7 +77,27 @@ double axial_impulse(const JointConstraint<N>& j) {
   return j.impulse + j.lower_impulse - j.upper_impulse;
 }
 
-// The lever arms and the error from the bodies' poses now (and a distance joint's axis).
+// A revolute or weld joint's orientation error: the turn (a bivector of angles, world) that would bring
+// body b to where it belongs relative to a, -2 log(R_target ~R_b), R_target = R_a R_ref with the
+// weld; the revolute first measures its angle (u_b's turn from u_a toward v_a, unwrapped past pi) and
+// lets b be turned by it in the plane: R_target = exp(-angle p / 2) R_a R_ref.
+template <int N>
+void place_orientation(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
+  const Rotor<N> ra = j.a >= 0 ? bodies[j.a].rotor : Rotor<N>::identity();
+  const Rotor<N>& rb = bodies[j.b].rotor;
+  Rotor<N> target = ra * j.reference;
+  if (j.type == JointType::Revolute) {
+    j.plane = rotate(ra, j.plane_local);
+    const Vec<N> ua = rotate(ra, j.u_a), va = rotate(ra, j.v_a), ub = rotate(rb, j.u_b);
+    const double raw = std::atan2(ub.dot(va), ub.dot(ua)) - j.angle_offset;
+    j.angle += std::remainder(raw - j.angle, 2.0 * std::numbers::pi);
+    target = exp<N>(j.plane * (-0.5 * j.angle)) * target;
+  }
+  j.turn = log<N>(target * reverse(rb)) * -2.0;
+}
+
+// The lever arms and the error from the bodies' poses now (and a distance joint's axis, a revolute or
+// weld joint's orientation error).
 template <int N>
 void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
   const Body<N>& b = bodies[j.b];
@@ -88,7 +110,8 @@ void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
     pa = a.center + j.ra;
   }
   j.separation = b.center + j.rb - pa;
-  if (j.type == JointType::Point) return;
+  if (j.type == JointType::Revolute || j.type == JointType::Weld) place_orientation(bodies, j);
+  if (j.type != JointType::Distance) return;
   j.distance = j.separation.norm();
   // (Anchors that meet leave the axis of the last sub-step, or the first axis if there was none.)
   if (j.distance > 1e-12) {
@@ -98,6 +121,27 @@ void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
   }
 }
 
+// The angular rows' effective mass. A turn impulse L (a bivector, on b; -L on a) changes the relative
+// angular velocity w_b - w_a by M L, M = I_a^-1 + I_b^-1 (world, k x k). The weld holds all k rows:
+// M^-1. The revolute holds the k - 1 rows off its plane p: with the projector P = 1 - p p^T it solves
+// (P M P + p p^T) L = -P e, whose answer lies off p; its plane's own row (limits, motor) has the mass
+// 1 / (p^T M p).
+template <int N>
+bool prepare_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j) {
+  BivMat<N> m = v.mb->inv_inertia;
+  if (v.a) m += v.ma->inv_inertia;
+  if (j.type == JointType::Revolute) {
+    const Eigen::Matrix<double, kBiv<N>, 1> p = j.plane.c;
+    const BivMat<N> off = BivMat<N>::Identity() - p * p.transpose();
+    const double along = p.dot(m * p);
+    if (!(along > 0.0)) return false;
+    j.plane_mass = 1.0 / along;
+    m = (off * m * off + p * p.transpose()).eval();
+  }
+  j.angular_mass = linalg::inverse<kBiv<N>>(m);
+  return all_finite(j.angular_mass);
+}
+
 // place_joint, then the effective masses. False if the joint cannot act (K not invertible: neither body
 // can move).
 template <int N>
@@ -105,7 +149,11 @@ bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, Joint
   place_joint(bodies, j);
   const JointBodiesView<N> v = view(s, j);
   const Mat<N> k = effective_mass_matrix(v, j);
-  if (j.type == JointType::Point) {
+  if (j.type == JointType::Revolute || j.type == JointType::Weld) {
+    if (!prepare_orientation(v, j)) return false;
+    if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
+  }
+  if (j.type != JointType::Distance) {
     j.mass = linalg::inverse<N>(k);
     return all_finite(j.mass) && k.trace() > 0.0;
   }
@@ -148,7 +196,7 @@ double solve_axial_row(const JointBodiesView<N>& v, JointConstraint<N>& j, doubl
 template <int N>
 void solve_point(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias, double h) {
   Vec<N> u = relative_anchor_velocity(v, j);
-  if (use_bias) u += (0.5 * h) * anchor_curvature(v, j);
+  if (h > 0.0) u += (0.5 * h) * anchor_curvature(v, j);
   const Vec<N> bias = use_bias ? Vec<N>(soft.bias_rate * j.separation) : Vec<N>(Vec<N>::Zero());
   const double mass_scale = use_bias ? soft.mass_scale : 1.0;
   const double impulse_scale = use_bias ? soft.impulse_scale : 0.0;
@@ -194,6 +242,93 @@ void solve_distance(const JointBodiesView<N>& v, JointConstraint<N>& j, const So
   if (std::isfinite(j.max_length)) limit(j.max_length - j.distance, -1.0, j.upper_impulse);
 }
 
+template <int N>
+using BivColumn = Eigen::Matrix<double, kBiv<N>, 1>;
+
+template <int N>
+BivColumn<N> relative_angular_velocity(const JointBodiesView<N>& v) {
+  BivColumn<N> w = v.b->w.c;
+  if (v.a) w -= v.a->w.c;
+  return w;
+}
+
+// A turn impulse L on b and -L on a.
+template <int N>
+void apply_turn(const JointBodiesView<N>& v, const BivColumn<N>& l) {
+  v.b->w.c += inverse_inertia_times(*v.mb, l);
+  if (v.a) v.a->w.c -= inverse_inertia_times(*v.ma, l);
+}
+
+// The revolute's own row along its plane: the motor (toward motor_speed, at most max_motor_torque), then
+// the angle limits (one-sided; speculative while inside them, softly pushed back once past).
+template <int N>
+void solve_plane_row(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias, double h) {
+  const BivColumn<N> p = j.plane.c;
+  if (j.motor) {
+    const double w = p.dot(relative_angular_velocity(v));
+    const double most = j.max_motor_torque * h, old = j.motor_impulse;
+    j.motor_impulse = std::clamp(old - j.plane_mass * (w - j.motor_speed), -most, most);
+    apply_turn(v, BivColumn<N>((j.motor_impulse - old) * p));
+  }
+  if (!j.limit) return;
+  const auto limit = [&](double gap, double sign, double& total) {
+    const double w = sign * p.dot(relative_angular_velocity(v));
+    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+    if (gap > 0.0) {
+      bias = gap / h;
+    } else if (use_bias) {
+      bias = soft.bias_rate * gap;
+      mass_scale = soft.mass_scale;
+      impulse_scale = soft.impulse_scale;
+    }
+    double change = -mass_scale * j.plane_mass * (w + bias) - impulse_scale * total;
+    change = std::max(total + change, 0.0) - total;
+    total += change;
+    apply_turn(v, BivColumn<N>(sign * change * p));
+  };
+  limit(j.angle - j.lower_angle, 1.0, j.lower_angle_impulse);
+  limit(j.upper_angle - j.angle, -1.0, j.upper_angle_impulse);
+}
+
+// The rows that hold the relative orientation (the weld's k, the revolute's k - 1 off its plane): the
+// relative angular velocity brought to the error's correction, softly (prepare_orientation's masses).
+template <int N>
+void solve_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias) {
+  BivColumn<N> e = relative_angular_velocity(v);
+  if (use_bias) e -= soft.bias_rate * j.turn.c;
+  const BivColumn<N> p = j.plane.c;
+  const bool revolute = j.type == JointType::Revolute;
+  if (revolute) e -= p * p.dot(e);
+  const double mass_scale = use_bias ? soft.mass_scale : 1.0, impulse_scale = use_bias ? soft.impulse_scale : 0.0;
+  BivColumn<N> l = -mass_scale * (j.angular_mass * e) - impulse_scale * j.angular_impulse.c;
+  if (revolute) l -= p * p.dot(l);  // (round-off: the rows act off the plane only)
+  j.angular_impulse.c += l;
+  apply_turn(v, l);
+}
+
+// A revolute or weld joint: its angular rows, then its point rows. A soft weld is a spring in both
+// passes (its own frequency), as a distance joint's spring is.
+template <int N>
+void solve_angular_joint(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias,
+                         double h) {
+  if (j.type == JointType::Revolute) solve_plane_row(v, j, soft, use_bias, h);
+  const double ahead = use_bias ? h : 0.0;
+  if (j.spring) {
+    solve_orientation(v, j, j.spring_soft, true);
+    solve_point(v, j, j.spring_soft, true, ahead);
+    return;
+  }
+  solve_orientation(v, j, soft, use_bias);
+  solve_point(v, j, soft, use_bias, ahead);
+}
+
+// The accumulated turn impulse on b (N m s, world): the rows off the plane, the motor and the limits.
+template <int N>
+BivColumn<N> turn_impulse(const JointConstraint<N>& j) {
+  return j.angular_impulse.c + (j.motor_impulse + j.lower_angle_impulse - j.upper_angle_impulse) * j.plane.c;
+}
+
+
 }  // namespace
 
 template <int N>
@@ -218,9 +353,11 @@ void warm_start_joints(ContactState<N>& s) {
   for (JointConstraint<N>& j : s.joints.slots) {
     if (!j.active) continue;
     const JointBodiesView<N> v = view(s, j);
-    apply(v, j, j.type == JointType::Point ? j.linear_impulse : Vec<N>(axial_impulse(j) * j.axis));
+    apply(v, j, joint_impulse(j));
+    if (j.type == JointType::Revolute || j.type == JointType::Weld) apply_turn(v, turn_impulse(j));
   }
 }
+
 
 template <int N>
 void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool use_bias) {
@@ -229,23 +366,39 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
     if (!j.active) continue;
     if (!use_bias) place_joint(bodies, j);  // (the relax pass: the joint as the position update left it)
     const JointBodiesView<N> v = view(s, j);
-    if (j.type == JointType::Point)
-      solve_point(v, j, js.soft, use_bias, js.h);
-    else
-      solve_distance(v, j, js.soft, use_bias, js.h);
+    switch (j.type) {
+      case JointType::Point:
+        solve_point(v, j, js.soft, use_bias, use_bias ? js.h : 0.0);
+        break;
+      case JointType::Distance:
+        solve_distance(v, j, js.soft, use_bias, js.h);
+        break;
+      case JointType::Revolute:
+      case JointType::Weld:
+        solve_angular_joint(v, j, js.soft, use_bias, js.h);
+        break;
+    }
   }
 }
 
 template <int N>
 Vec<N> joint_impulse(const JointConstraint<N>& j) {
-  return j.type == JointType::Point ? j.linear_impulse : Vec<N>(axial_impulse(j) * j.axis);
+  return j.type == JointType::Distance ? Vec<N>(axial_impulse(j) * j.axis) : j.linear_impulse;
+}
+
+template <int N>
+Bivector<N> joint_turn_impulse(const JointConstraint<N>& j) {
+  Bivector<N> l;
+  if (j.type == JointType::Revolute || j.type == JointType::Weld) l.c = turn_impulse(j);
+  return l;
 }
 
 #define WEDGE_INSTANTIATE(N)                                                                                    \
   template bool prepare_joints<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
   template void warm_start_joints<N>(ContactState<N>&);                                                         \
   template void solve_joints<N>(ContactState<N>&, const std::vector<Body<N>>&, bool);                                                        \
-  template Vec<N> joint_impulse<N>(const JointConstraint<N>&);
+  template Vec<N> joint_impulse<N>(const JointConstraint<N>&);                                                  \
+  template Bivector<N> joint_turn_impulse<N>(const JointConstraint<N>&);
 WEDGE_FOR_EACH_DIM(WEDGE_INSTANTIATE)
 #undef WEDGE_INSTANTIATE
 
