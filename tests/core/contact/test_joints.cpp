@@ -47,25 +47,20 @@ World<N> pendulum_world() {
 }
 
 template <int N>
-BodyDef<N> ball(double radius, const Vec<N>& at) {
-  BodyDef<N> d;
-  d.shape = std::make_shared<const Shape<N>>(Shape<N>::ball(radius));
-  const MassProperties<N> mp = ball_mass_properties<N>(radius, 1000.0);
-  d.mass = mp.mass;
-  d.inertia = mp.inertia;
+BodyDef<N> placed(const Shape<N>& shape, double density, const Vec<N>& at) {
+  BodyDef<N> d = body_def<N>(std::make_shared<const Shape<N>>(shape), density);
   d.position = at;
   return d;
 }
 
 template <int N>
+BodyDef<N> ball(double radius, const Vec<N>& at) {
+  return placed<N>(Shape<N>::ball(radius), 1000.0, at);
+}
+
+template <int N>
 BodyDef<N> box(const Vec<N>& half, double density, const Vec<N>& at) {
-  BodyDef<N> d;
-  d.shape = std::make_shared<const Shape<N>>(Shape<N>::box(half));
-  const MassProperties<N> mp = box_mass_properties<N>(half, density);
-  d.mass = mp.mass;
-  d.inertia = mp.inertia;
-  d.position = at;
-  return d;
+  return placed<N>(Shape<N>::box(half), density, at);
 }
 
 // The period of x(t) of the body's centre, from its downward zero crossings (linear interpolation
