@@ -279,18 +279,16 @@ SceneJoint<N> read_joint(const Node& node, const std::map<std::string, std::uint
   }
   if (type == "revolute") {
     RevoluteJointDef<N> r{jb};
-    if (auto n = obj.optional("plane_a")) {
+    const auto plane = [&](const char* key, Vec<N>& u, Vec<N>& v) {
+      const std::optional<Node> n = obj.optional(key);
+      if (!n) return;
       const std::vector<Node> uv = n->array();
       if (uv.size() != 2) n->fail("must be two vectors, u and v (got " + std::to_string(uv.size()) + ")");
-      r.plane_u_a = uv[0].vec<N>();
-      r.plane_v_a = uv[1].vec<N>();
-    }
-    if (auto n = obj.optional("plane_b")) {
-      const std::vector<Node> uv = n->array();
-      if (uv.size() != 2) n->fail("must be two vectors, u and v (got " + std::to_string(uv.size()) + ")");
-      r.plane_u_b = uv[0].vec<N>();
-      r.plane_v_b = uv[1].vec<N>();
-    }
+      u = uv[0].vec<N>();
+      v = uv[1].vec<N>();
+    };
+    plane("plane_a", r.plane_u_a, r.plane_v_a);
+    plane("plane_b", r.plane_u_b, r.plane_v_b);
     r.limit = obj.boolean_or("limit", false);
     r.lower_angle = read_ranged(obj, "lower_angle", 0.0, -1e6, 1e6, "a finite angle in rad");
     const std::optional<Node> upper = obj.optional("upper_angle");

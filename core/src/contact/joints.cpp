@@ -147,12 +147,10 @@ bool prepare_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j) {
 template <int N>
 bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, JointConstraint<N>& j, double h) {
   place_joint(bodies, j);
+  if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
   const JointBodiesView<N> v = view(s, j);
   const Mat<N> k = effective_mass_matrix(v, j);
-  if (j.type == JointType::Revolute || j.type == JointType::Weld) {
-    if (!prepare_orientation(v, j)) return false;
-    if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
-  }
+  if ((j.type == JointType::Revolute || j.type == JointType::Weld) && !prepare_orientation(v, j)) return false;
   if (j.type != JointType::Distance) {
     j.mass = linalg::inverse<N>(k);
     return all_finite(j.mass) && k.trace() > 0.0;
@@ -160,7 +158,6 @@ bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, Joint
   const double axial = j.axis.dot(k * j.axis);
   if (!(axial > 0.0)) return false;
   j.axial_mass = 1.0 / axial;
-  if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
   return std::isfinite(j.axial_mass);
 }
 

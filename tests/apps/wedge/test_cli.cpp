@@ -618,6 +618,18 @@ json::const_iterator find_body(const json& state, const std::string& name) {
 // steps: 1e-9) and linear momentum exactly up to round-off; the world angular momentum drifts at second
 // order in the step (4.5e-5 relative over 5 s at 1/120 s for the 4D cuboid; tests/core/test_world.cpp
 // measures the order), so 1e-3.
+// A body's centre in a state line, and the distance between two points.
+std::vector<double> center_of(const json& state, const std::string& name) {
+  std::vector<double> v;
+  for (const auto& x : (*find_body(state, name))["center"]) v.push_back(x.get<double>());
+  return v;
+}
+double distance(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(d);
+}
+
 void check_free_flight(const json& first, const json& last) {
   CHECK(close_rel(last["energy"].get<double>(), first["energy"].get<double>(), 1e-9));
   for (std::size_t i = 0; i < first["linear_momentum"].size(); ++i)
@@ -739,18 +751,8 @@ void check_shipped_scene_physics(const std::string& scene, const json& first, co
     // to their springs); the rod and the pins hold to 1 mm; each pendulum stays in its plane: the bob in
     // the plane of y and (x + w)/sqrt(2) through its pivot, the double pendulum in the x-y plane.
     CHECK(close_rel(last["energy"].get<double>(), first["energy"].get<double>(), 5e-3));
-    const auto center = [&](const char* name) {
-      const json& c = (*find_body(last, name))["center"];
-      std::vector<double> v;
-      for (const auto& x : c) v.push_back(x.get<double>());
-      return v;
-    };
-    const auto distance = [](const std::vector<double>& a, const std::vector<double>& b) {
-      double d = 0.0;
-      for (std::size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]);
-      return std::sqrt(d);
-    };
-    const std::vector<double> bob = center("bob"), upper = center("upper"), lower = center("lower");
+    const std::vector<double> bob = center_of(last, "bob"), upper = center_of(last, "upper"),
+                              lower = center_of(last, "lower");
     CHECK(std::abs(distance(bob, {0.0, 2.0, -0.6, 0.0}) - 1.0) < 1e-3);
     CHECK(std::abs(bob[0] - bob[3]) < 1e-9);
     CHECK(bob[2] == -0.6);
@@ -767,16 +769,7 @@ void check_shipped_scene_physics(const std::string& scene, const json& first, co
     const auto links = names_with_prefix(last, "link_");
     REQUIRE(links.size() == 12);
     std::vector<std::vector<double>> c;
-    for (const std::string& name : links) {
-      std::vector<double> v;
-      for (const auto& x : (*find_body(last, name))["center"]) v.push_back(x.get<double>());
-      c.push_back(v);
-    }
-    const auto distance = [](const std::vector<double>& a, const std::vector<double>& b) {
-      double d = 0.0;
-      for (std::size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]) * (a[i] - b[i]);
-      return std::sqrt(d);
-    };
+    for (const std::string& name : links) c.push_back(center_of(last, name));
     CHECK(distance(c[0], {0.0, 1.975, 0.0, 0.0}) < 0.08 + 2e-3);
     for (std::size_t i = 1; i < c.size(); ++i) CHECK(distance(c[i - 1], c[i]) < 0.16 + 2e-3);
     CHECK(c.back()[1] < 1.5);
