@@ -151,6 +151,33 @@ JointId World<N>::add_joint(const RevoluteJointDef<N>& def) {
 }
 
 template <int N>
+JointId World<N>::add_joint(const PrismaticJointDef<N>& def) {
+  contact::JointConstraint<N> j = joint_bodies(def, JointType::Prismatic);
+  if (!(all_finite(def.axis_a) && std::abs(def.axis_a.norm() - 1.0) < 1e-9))
+    throw Error("add_joint: a prismatic joint's axis_a must be a unit vector (to 1e-9)");
+  if (!(std::isfinite(def.lower_translation) && std::isfinite(def.upper_translation) &&
+        def.lower_translation <= def.upper_translation))
+    throw Error("add_joint: lower_translation and upper_translation must be finite, lower <= upper (m)");
+  if (!std::isfinite(def.motor_speed)) throw Error("add_joint: motor_speed must be finite (m/s)");
+  if (!(std::isfinite(def.max_motor_force) && def.max_motor_force >= 0.0))
+    throw Error("add_joint: max_motor_force must be finite and >= 0 (N)");
+  const Rotor<N> ra = joint_rotor_a(j);
+  const Body<N>& b = bodies_[j.b];
+  const Vec<N> anchor_a = j.a >= 0 ? Vec<N>(bodies_[j.a].center + rotate(ra, j.local_a)) : j.local_a;
+  j.reference = reverse(ra) * b.rotor;
+  j.axis_local = def.axis_a;
+  j.axis = rotate(ra, def.axis_a);
+  j.translation = j.axis.dot(b.center + rotate(b.rotor, j.local_b) - anchor_a);
+  j.limit = def.limit;
+  j.lower_translation = def.lower_translation;
+  j.upper_translation = def.upper_translation;
+  j.motor = def.motor;
+  j.motor_speed = def.motor_speed;
+  j.max_motor_force = def.max_motor_force;
+  return insert_joint(j);
+}
+
+template <int N>
 JointId World<N>::add_joint(const WeldJointDef<N>& def) {
   contact::JointConstraint<N> j = joint_bodies(def, JointType::Weld);
   if (!(std::isfinite(def.frequency) && def.frequency >= 0.0)) throw Error("add_joint: frequency must be finite and >= 0 (Hz)");
@@ -175,6 +202,14 @@ double World<N>::joint_angle(JointId id) const {
   const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
   if (j.type != JointType::Revolute) throw Error("joint_angle: joint " + std::to_string(id.index) + " is not a revolute joint");
   return j.angle;
+}
+
+template <int N>
+double World<N>::joint_translation(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  if (j.type != JointType::Prismatic)
+    throw Error("joint_translation: joint " + std::to_string(id.index) + " is not a prismatic joint");
+  return j.translation;
 }
 
 template <int N>
@@ -238,9 +273,11 @@ Vec<N> World<N>::joint_force(JointId id) const {
   template JointId World<N>::add_joint(const DistanceJointDef<N>&); \
   template Rotor<N> World<N>::joint_rotor_a(const contact::JointConstraint<N>&) const; \
   template JointId World<N>::add_joint(const RevoluteJointDef<N>&); \
+  template JointId World<N>::add_joint(const PrismaticJointDef<N>&); \
   template JointId World<N>::add_joint(const WeldJointDef<N>&); \
   template Bivector<N> World<N>::joint_torque(JointId) const; \
   template double World<N>::joint_angle(JointId) const; \
+  template double World<N>::joint_translation(JointId) const; \
   template void World<N>::remove_joint(JointId); \
   template bool World<N>::has_joint(JointId) const; \
   template int World<N>::joint_count() const; \

@@ -254,6 +254,81 @@ void check_anchor(const Node& node, const Vec<N>& anchor, const SceneBody<N>& bo
               format_number(half.norm()) + " m): an anchor lies on or near its body, in the body's frame");
 }
 
+// A pair of limits, lower <= upper, each finite (|x| <= 1e6); the upper defaults to 0.
+void read_limits(ObjectReader& obj, const Node& node, const std::string& lower_key, const std::string& upper_key,
+                 const std::string& unit, double& lower, double& upper) {
+  lower = read_ranged(obj, lower_key, 0.0, -1e6, 1e6, ("finite, in " + unit).c_str());
+  const std::optional<Node> upper_node = obj.optional(upper_key);
+  if (upper_node) {
+    upper = upper_node->number();
+    if (!(upper >= lower && upper <= 1e6))
+      upper_node->fail("must be >= " + lower_key + " (" + format_number(lower) + " " + unit + ") (got " +
+                       upper_node->json().dump() + ")");
+  } else if (lower > 0.0) {
+    node.fail(lower_key + " is above the default " + upper_key + " 0: give " + upper_key);
+  }
+}
+
+template <int N>
+RevoluteJointDef<N> read_revolute(ObjectReader& obj, const Node& node, const JointBodies<N>& jb) {
+  RevoluteJointDef<N> r{jb};
+  const auto plane = [&](const char* key, Vec<N>& u, Vec<N>& v) {
+    const std::optional<Node> n = obj.optional(key);
+    if (!n) return;
+    const std::vector<Node> uv = n->array();
+    if (uv.size() != 2) n->fail("must be two vectors, u and v (got " + std::to_string(uv.size()) + ")");
+    u = uv[0].vec<N>();
+    v = uv[1].vec<N>();
+  };
+  plane("plane_a", r.plane_u_a, r.plane_v_a);
+  plane("plane_b", r.plane_u_b, r.plane_v_b);
+  r.limit = obj.boolean_or("limit", false);
+  read_limits(obj, node, "lower_angle", "upper_angle", "rad", r.lower_angle, r.upper_angle);
+  r.motor = obj.boolean_or("motor", false);
+  r.motor_speed = read_ranged(obj, "motor_speed", 0.0, -1e6, 1e6, "a finite speed in rad/s");
+  r.max_motor_torque = read_ranged(obj, "max_motor_torque", 0.0, 0.0, HUGE_VAL, ">= 0 N m");
+  return r;
+}
+
+// The axis is a direction in body_a's frame (or the world's), any length but zero: it is normalised.
+template <int N>
+PrismaticJointDef<N> read_prismatic(ObjectReader& obj, const Node& node, const JointBodies<N>& jb) {
+  PrismaticJointDef<N> p{jb};
+  if (auto n = obj.optional("axis")) {
+    const Vec<N> axis = n->vec<N>();
+    if (!(axis.norm() > 1e-9)) n->fail("must be a direction, not zero (got " + n->json().dump() + ")");
+    p.axis_a = axis.normalized();
+  }
+  p.limit = obj.boolean_or("limit", false);
+  read_limits(obj, node, "lower_translation", "upper_translation", "m", p.lower_translation, p.upper_translation);
+  p.motor = obj.boolean_or("motor", false);
+  p.motor_speed = read_ranged(obj, "motor_speed", 0.0, -1e6, 1e6, "a finite speed in m/s");
+  p.max_motor_force = read_ranged(obj, "max_motor_force", 0.0, 0.0, HUGE_VAL, ">= 0 N");
+  return p;
+}
+
+template <int N>
+DistanceJointDef<N> read_distance(ObjectReader& obj, const Node& node, const JointBodies<N>& jb) {
+  DistanceJointDef<N> d{jb};
+  d.spring = obj.boolean_or("spring", false);
+  d.length = d.spring ? read_ranged(obj, "length", -1.0, 0.0, HUGE_VAL, ">= 0 m (leave it out for the anchors' distance)")
+                      : read_ranged(obj, "length", -1.0, 1e-4, HUGE_VAL,
+                                    ">= 0.0001 m (leave it out for the anchors' distance)");
+  d.frequency = read_ranged(obj, "frequency", 0.0, 0.0, 1e6, ">= 0 Hz");
+  d.damping_ratio = read_ranged(obj, "damping_ratio", 0.0, 0.0, 1e6, ">= 0");
+  d.min_length = read_ranged(obj, "min_length", 0.0, 0.0, HUGE_VAL, ">= 0 m");
+  const std::optional<Node> max_node = obj.optional("max_length");
+  if (max_node) {
+    d.max_length = max_node->number();
+    if (!(d.max_length >= d.min_length))
+      max_node->fail("must be >= min_length (" + format_number(d.min_length) + " m) (got " + max_node->json().dump() + ")");
+  }
+  if (!d.spring && (d.frequency != 0.0 || d.min_length != 0.0 || max_node))
+    node.fail("frequency, damping_ratio, min_length and max_length are a spring's: add \"spring\": true");
+  return d;
+}
+
+// One entry of `joints`: the bodies and anchors every joint has, then its type's own keys.
 template <int N>
 SceneJoint<N> read_joint(const Node& node, const std::map<std::string, std::uint32_t>& index,
                          const std::vector<SceneBody<N>>& bodies) {
@@ -273,65 +348,25 @@ SceneJoint<N> read_joint(const Node& node, const std::map<std::string, std::uint
     check_anchor<N>(*n, jb.anchor_b, bodies[jb.body_b.index]);
   }
   jb.collide_connected = obj.boolean_or("collide_connected", false);
+  SceneJoint<N> joint;
   if (type == "point") {
-    obj.finish();
-    return PointJointDef<N>{jb};
-  }
-  if (type == "revolute") {
-    RevoluteJointDef<N> r{jb};
-    const auto plane = [&](const char* key, Vec<N>& u, Vec<N>& v) {
-      const std::optional<Node> n = obj.optional(key);
-      if (!n) return;
-      const std::vector<Node> uv = n->array();
-      if (uv.size() != 2) n->fail("must be two vectors, u and v (got " + std::to_string(uv.size()) + ")");
-      u = uv[0].vec<N>();
-      v = uv[1].vec<N>();
-    };
-    plane("plane_a", r.plane_u_a, r.plane_v_a);
-    plane("plane_b", r.plane_u_b, r.plane_v_b);
-    r.limit = obj.boolean_or("limit", false);
-    r.lower_angle = read_ranged(obj, "lower_angle", 0.0, -1e6, 1e6, "a finite angle in rad");
-    const std::optional<Node> upper = obj.optional("upper_angle");
-    if (upper) {
-      r.upper_angle = upper->number();
-      if (!(r.upper_angle >= r.lower_angle && r.upper_angle <= 1e6))
-        upper->fail("must be >= lower_angle (" + format_number(r.lower_angle) + " rad) (got " + upper->json().dump() + ")");
-    } else if (r.lower_angle > 0.0) {
-      node.fail("lower_angle is above the default upper_angle 0: give upper_angle");
-    }
-    r.motor = obj.boolean_or("motor", false);
-    r.motor_speed = read_ranged(obj, "motor_speed", 0.0, -1e6, 1e6, "a finite speed in rad/s");
-    r.max_motor_torque = read_ranged(obj, "max_motor_torque", 0.0, 0.0, HUGE_VAL, ">= 0 N m");
-    obj.finish();
-    return r;
-  }
-  if (type == "weld") {
+    joint = PointJointDef<N>{jb};
+  } else if (type == "distance") {
+    joint = read_distance<N>(obj, node, jb);
+  } else if (type == "revolute") {
+    joint = read_revolute<N>(obj, node, jb);
+  } else if (type == "prismatic") {
+    joint = read_prismatic<N>(obj, node, jb);
+  } else if (type == "weld") {
     WeldJointDef<N> w{jb};
     w.frequency = read_ranged(obj, "frequency", 0.0, 0.0, 1e6, ">= 0 Hz (0: rigid)");
     w.damping_ratio = read_ranged(obj, "damping_ratio", 1.0, 0.0, 1e6, ">= 0");
-    obj.finish();
-    return w;
-  }
-  if (type != "distance")
-    type_node.fail("must be \"point\", \"distance\", \"revolute\" or \"weld\" (got \"" + type + "\")");
-  DistanceJointDef<N> d{jb};
-  d.spring = obj.boolean_or("spring", false);
-  d.length = d.spring ? read_ranged(obj, "length", -1.0, 0.0, HUGE_VAL, ">= 0 m (leave it out for the anchors' distance)")
-                      : read_ranged(obj, "length", -1.0, 1e-4, HUGE_VAL,
-                                    ">= 0.0001 m (leave it out for the anchors' distance)");
-  d.frequency = read_ranged(obj, "frequency", 0.0, 0.0, 1e6, ">= 0 Hz");
-  d.damping_ratio = read_ranged(obj, "damping_ratio", 0.0, 0.0, 1e6, ">= 0");
-  d.min_length = read_ranged(obj, "min_length", 0.0, 0.0, HUGE_VAL, ">= 0 m");
-  const std::optional<Node> max_node = obj.optional("max_length");
-  if (max_node) {
-    d.max_length = max_node->number();
-    if (!(d.max_length >= d.min_length))
-      max_node->fail("must be >= min_length (" + format_number(d.min_length) + " m) (got " + max_node->json().dump() + ")");
+    joint = w;
+  } else {
+    type_node.fail("must be \"point\", \"distance\", \"revolute\", \"prismatic\" or \"weld\" (got \"" + type + "\")");
   }
   obj.finish();
-  if (!d.spring && (d.frequency != 0.0 || d.min_length != 0.0 || max_node))
-    node.fail("frequency, damping_ratio, min_length and max_length are a spring's: add \"spring\": true");
-  return d;
+  return joint;
 }
 
 }  // namespace

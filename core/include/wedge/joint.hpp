@@ -8,6 +8,8 @@
 //   RevoluteJointDef  a point joint whose bodies may turn relative to each other only in one plane (in 3D
 //                     a hinge about the plane's normal; in 4D a door hinged on a 2-plane), with angle
 //                     limits and a motor.
+//   PrismaticJointDef a slider: body b may move relative to body a only along one axis, and may not turn
+//                     relative to it; translation limits and a motor.
 //   WeldJointDef      no relative motion at all, rigid or soft.
 //
 // Like contacts, a joint's position error is corrected by a stiff soft constraint (ContactSettings::
@@ -25,7 +27,7 @@
 
 namespace wedge {
 
-enum class JointType : std::uint8_t { Point, Distance, Revolute, Weld };
+enum class JointType : std::uint8_t { Point, Distance, Revolute, Prismatic, Weld };
 
 // What every joint has: the bodies and where on them it holds, in each body's own frame (the shape's
 // frame, as BodyDef::position places it). Without body_a the joint holds body_b to the world, and
@@ -71,6 +73,21 @@ struct RevoluteJointDef : JointBodies<N> {
   bool motor = false;
   double motor_speed = 0.0;       // rad/s, in the plane (u toward v)
   double max_motor_torque = 0.0;  // N m, >= 0
+};
+
+// A slider: anchor_b may move relative to body a only along `axis_a` through anchor_a, and body b keeps
+// its orientation relative to a from when the joint is added. The translation is anchor_b's distance from
+// anchor_a along the axis (0 where the anchors coincide). With `limit` it stays in [lower_translation,
+// upper_translation]; with `motor` the joint drives the relative speed along the axis toward motor_speed
+// with at most max_motor_force. Box2D's prismatic joint in 2D, Jolt's slider in 3D.
+template <int N>
+struct PrismaticJointDef : JointBodies<N> {
+  Vec<N> axis_a = Vec<N>::Unit(0);  // unit, body_a's frame (world without body_a)
+  bool limit = false;
+  double lower_translation = 0.0, upper_translation = 0.0;  // m, lower <= upper
+  bool motor = false;
+  double motor_speed = 0.0;      // m/s, along the axis
+  double max_motor_force = 0.0;  // N, >= 0
 };
 
 // No relative motion: the anchors coincide and the bodies keep their relative orientation from when the

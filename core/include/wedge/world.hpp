@@ -162,6 +162,7 @@ class World {
   JointId add_joint(const PointJointDef<N>& def);
   JointId add_joint(const DistanceJointDef<N>& def);
   JointId add_joint(const RevoluteJointDef<N>& def);
+  JointId add_joint(const PrismaticJointDef<N>& def);
   JointId add_joint(const WeldJointDef<N>& def);
   void remove_joint(JointId id);
   bool has_joint(JointId id) const;
@@ -178,6 +179,9 @@ class World {
   // rad: a revolute joint's angle, body_b's turn relative to body_a in the plane since the joint was
   // added (u toward v), as of the last step; throws for another kind of joint.
   double joint_angle(JointId id) const;
+  // m: a prismatic joint's translation, anchor_b's distance from anchor_a along the axis, as of the last
+  // step (before the first, when the joint was added); throws for another kind of joint.
+  double joint_translation(JointId id) const;
 
   // Queries on the state (shapes as placed now; candidates culled by the broad phase's boxes of the
   // last step, which hold every body that has not been moved by hand since).

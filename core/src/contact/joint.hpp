@@ -36,15 +36,23 @@ struct JointConstraint {
   bool limit = false, motor = false;
   double lower_angle = 0.0, upper_angle = 0.0, motor_speed = 0.0, max_motor_torque = 0.0;  // rad, rad/s, N m
   double angle = 0.0;  // rad, revolute: the angle at the last placing (unwrapped: it may pass pi)
+  // Prismatic joints: the unit axis in a's frame, the translation limits (m), the motor's force limit
+  // (N; its speed, m/s, is motor_speed), and the translation at the last placing (m).
+  Vec<N> axis_local = Vec<N>::Zero();
+  double lower_translation = 0.0, upper_translation = 0.0, max_motor_force = 0.0;
+  double translation = 0.0;
 
   // This sub-step (prepare_joints).
   bool active = false;                       // live, with a body that moves
-  Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();  // m, world: the anchors from the centres of mass
+  // m, world: the anchors from the centres of mass (prismatic: ra reaches anchor b, as the axis turns with a)
+  Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();
   Vec<N> separation = Vec<N>::Zero();        // m, world: anchor b - anchor a
-  Mat<N> mass = Mat<N>::Zero();              // point: K^-1, K the anchors' relative effective mass matrix
-  Vec<N> axis = Vec<N>::Zero();              // distance: the unit direction from anchor a to anchor b
+  Mat<N> mass = Mat<N>::Zero();              // point: K^-1, K the anchors' relative effective mass matrix;
+                                             // prismatic: the rows across the axis' (prepare_joint)
+  Vec<N> axis = Vec<N>::Zero();              // distance: the unit direction from anchor a to anchor b;
+                                             // prismatic: the axis, world
   double distance = 0.0;                     // m, distance: |separation|
-  double axial_mass = 0.0;                   // kg, distance: 1 / (axis^T K axis)
+  double axial_mass = 0.0;                   // kg, distance, prismatic: 1 / (axis^T K axis)
   Softness spring_soft;                      // distance with a spring, soft weld: its coefficients
   Bivector<N> plane{};                       // revolute: the plane, world (unit)
   Bivector<N> turn{};                        // revolute, weld: the turn (rad) that would bring b where it belongs
@@ -53,11 +61,11 @@ struct JointConstraint {
 
   // Accumulated impulses (N s) on body b (body a takes their opposite), kept between sub-steps and
   // steps: the warm start.
-  Vec<N> linear_impulse = Vec<N>::Zero();    // point
+  Vec<N> linear_impulse = Vec<N>::Zero();    // point, revolute, weld; prismatic: across the axis
   double impulse = 0.0;                      // distance: along the axis (rigid, or the spring)
-  double lower_impulse = 0.0, upper_impulse = 0.0;  // distance: the limits' (>= 0; the upper pulls)
-  Bivector<N> angular_impulse{};             // N m s, revolute (out of the plane) and weld: on body b
-  double motor_impulse = 0.0;                // N m s, revolute: the motor's, in the plane
+  double lower_impulse = 0.0, upper_impulse = 0.0;  // distance, prismatic: the limits' (>= 0; the upper pulls)
+  Bivector<N> angular_impulse{};             // N m s, revolute (out of the plane), prismatic, weld: on body b
+  double motor_impulse = 0.0;                // N m s, revolute: the motor's, in the plane; N s, prismatic
   double lower_angle_impulse = 0.0, upper_angle_impulse = 0.0;  // N m s, revolute: the angle limits' (>= 0)
 };
 

@@ -11,6 +11,9 @@
 //   Distance joint: one row along n = C / |C|, C_d = |C| - length, with k = n^T K n; a spring replaces the
 //                   joint's stiffness with its own (frequency, damping ratio) in both passes; the limits
 //                   are one-sided rows (impulses >= 0), speculative while the distance is inside them.
+//   Prismatic joint: the point rows across the axis n (turning with body a, so a's lever arm reaches
+//                   anchor b): (Q K Q + n n^T) j = -Q (u + bias_rate C), Q = 1 - n n^T; the axis' own row
+//                   carries the motor and the limits; the weld's angular rows hold the orientation.
 // In the solve pass the error is corrected at the joint spring's rate (ContactSettings::joint_hertz and
 // joint_damping_ratio, wedge/softness.hpp); the relax pass solves the velocity rows alone (no bias, full
 // mass), so the correction leaves no velocity behind.
@@ -77,29 +80,37 @@ double axial_impulse(const JointConstraint<N>& j) {
   return j.impulse + j.lower_impulse - j.upper_impulse;
 }
 
-// A revolute or weld joint's orientation error: the turn (a bivector of angles, world) that would bring
-// body b to where it belongs relative to a, -2 log(R_target ~R_b), R_target = R_a R_ref with the
-// weld; the revolute first measures its angle (u_b's turn from u_a toward v_a, unwrapped past pi) and
-// lets b be turned by it in the plane: R_target = exp(-angle p / 2) R_a R_ref.
 template <int N>
-void place_orientation(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
+bool holds_orientation(const JointConstraint<N>& j) {
+  return j.type == JointType::Revolute || j.type == JointType::Prismatic || j.type == JointType::Weld;
+}
+
+// The frame a revolute or prismatic joint takes from body a (the revolute's plane and angle: u_b's turn
+// from u_a toward v_a, unwrapped past pi; the prismatic's axis), and with `with_turn` the orientation
+// error: the turn (a bivector of angles, world) that would bring body b to where it belongs relative to
+// a, -2 log(R_target ~R_b), R_target = R_a R_ref, the revolute's turned by its angle in the plane:
+// R_target = exp(-angle p / 2) R_a R_ref.
+template <int N>
+void place_orientation(const std::vector<Body<N>>& bodies, JointConstraint<N>& j, bool with_turn) {
   const Rotor<N> ra = j.a >= 0 ? bodies[j.a].rotor : Rotor<N>::identity();
   const Rotor<N>& rb = bodies[j.b].rotor;
-  Rotor<N> target = ra * j.reference;
+  if (j.type == JointType::Prismatic) j.axis = rotate(ra, j.axis_local);
   if (j.type == JointType::Revolute) {
     j.plane = rotate(ra, j.plane_local);
     const Vec<N> ua = rotate(ra, j.u_a), va = rotate(ra, j.v_a), ub = rotate(rb, j.u_b);
     const double raw = std::atan2(ub.dot(va), ub.dot(ua)) - j.angle_offset;
     j.angle += std::remainder(raw - j.angle, 2.0 * std::numbers::pi);
-    target = exp<N>(j.plane * (-0.5 * j.angle)) * target;
   }
+  if (!with_turn) return;
+  Rotor<N> target = ra * j.reference;
+  if (j.type == JointType::Revolute) target = exp<N>(j.plane * (-0.5 * j.angle)) * target;
   j.turn = log<N>(target * reverse(rb)) * -2.0;
 }
 
-// The lever arms and the error from the bodies' poses now (and a distance joint's axis, a revolute or
-// weld joint's orientation error).
+// The lever arms and the error from the bodies' poses now (and a distance joint's axis, the frame of a
+// revolute or prismatic joint, and with `with_turn` the orientation error).
 template <int N>
-void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
+void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j, bool with_turn) {
   const Body<N>& b = bodies[j.b];
   j.rb = rotate(b.rotor, j.local_b);
   Vec<N> pa = j.local_a;
@@ -110,7 +121,12 @@ void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
     pa = a.center + j.ra;
   }
   j.separation = b.center + j.rb - pa;
-  if (j.type == JointType::Revolute || j.type == JointType::Weld) place_orientation(bodies, j);
+  if (holds_orientation(j)) place_orientation(bodies, j, with_turn);
+  if (j.type == JointType::Prismatic) {
+    j.translation = j.axis.dot(j.separation);
+    if (j.a >= 0) j.ra += j.separation;
+    return;
+  }
   if (j.type != JointType::Distance) return;
   j.distance = j.separation.norm();
   // (Anchors that meet leave the axis of the last sub-step, or the first axis if there was none.)
@@ -122,8 +138,8 @@ void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j) {
 }
 
 // The angular rows' effective mass. A turn impulse L (a bivector, on b; -L on a) changes the relative
-// angular velocity w_b - w_a by M L, M = I_a^-1 + I_b^-1 (world, k x k). The weld holds all k rows:
-// M^-1. The revolute holds the k - 1 rows off its plane p: with the projector P = 1 - p p^T it solves
+// angular velocity w_b - w_a by M L, M = I_a^-1 + I_b^-1 (world, k x k). The weld and the prismatic
+// joint hold all k rows: M^-1. The revolute holds the k - 1 rows off its plane p: with the projector P = 1 - p p^T it solves
 // (P M P + p p^T) L = -P e, whose answer lies off p; its plane's own row (limits, motor) has the mass
 // 1 / (p^T M p).
 template <int N>
@@ -146,11 +162,20 @@ bool prepare_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j) {
 // can move).
 template <int N>
 bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, JointConstraint<N>& j, double h) {
-  place_joint(bodies, j);
+  place_joint(bodies, j, true);
   if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
   const JointBodiesView<N> v = view(s, j);
   const Mat<N> k = effective_mass_matrix(v, j);
-  if ((j.type == JointType::Revolute || j.type == JointType::Weld) && !prepare_orientation(v, j)) return false;
+  if (holds_orientation(j) && !prepare_orientation(v, j)) return false;
+  if (j.type == JointType::Prismatic) {
+    const Mat<N> along = j.axis * j.axis.transpose(), across = Mat<N>::Identity() - along;
+    const double axial = j.axis.dot(k * j.axis);
+    if (!(axial > 0.0)) return false;
+    j.axial_mass = 1.0 / axial;
+    j.mass = linalg::inverse<N>(Mat<N>(across * k * across + along));
+    j.linear_impulse = across * j.linear_impulse;  // (the axis turns with a: keep the warm start across it)
+    return all_finite(j.mass) && std::isfinite(j.axial_mass);
+  }
   if (j.type != JointType::Distance) {
     j.mass = linalg::inverse<N>(k);
     return all_finite(j.mass) && k.trace() > 0.0;
@@ -212,6 +237,20 @@ double distance_curvature(const JointBodiesView<N>& v, const JointConstraint<N>&
   return std::max(u.squaredNorm() - along * along, 0.0) / j.distance + j.axis.dot(anchor_curvature(v, j));
 }
 
+// A one-sided row along the axis (a limit, impulses >= 0): a limit the anchors are still inside may close
+// by its gap in the sub-step and no more (speculative, rigid); one they are beyond is pushed back softly
+// in the solve pass.
+template <int N>
+void solve_axial_limit(const JointBodiesView<N>& v, JointConstraint<N>& j, double gap, double sign, double& total,
+                       const Softness& soft, bool use_bias, double h, double ahead) {
+  const Softness rigid{};
+  if (gap > 0.0) {
+    solve_axial_row(v, j, sign, gap / h, rigid, total, true, ahead);
+  } else {
+    solve_axial_row(v, j, sign, use_bias ? soft.bias_rate * gap : 0.0, use_bias ? soft : rigid, total, true, ahead);
+  }
+}
+
 template <int N>
 void solve_distance(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias,
                     double h) {
@@ -226,17 +265,9 @@ void solve_distance(const JointBodiesView<N>& v, JointConstraint<N>& j, const So
   }
   if (j.frequency > 0.0)  // (the spring is physics, not a correction: both passes)
     solve_axial_row(v, j, 1.0, j.spring_soft.bias_rate * (j.distance - j.length), j.spring_soft, j.impulse, false);
-  // A limit the anchors are still inside may close by its gap in the sub-step and no more (speculative,
-  // rigid); one they are beyond is pushed back softly in the solve pass.
-  const auto limit = [&](double gap, double sign, double& total) {
-    if (gap > 0.0) {
-      solve_axial_row(v, j, sign, gap / h, rigid, total, true, ahead);
-    } else {
-      solve_axial_row(v, j, sign, use_bias ? soft.bias_rate * gap : 0.0, correction, total, true, ahead);
-    }
-  };
-  if (j.min_length > 0.0) limit(j.distance - j.min_length, 1.0, j.lower_impulse);
-  if (std::isfinite(j.max_length)) limit(j.max_length - j.distance, -1.0, j.upper_impulse);
+  if (j.min_length > 0.0) solve_axial_limit(v, j, j.distance - j.min_length, 1.0, j.lower_impulse, soft, use_bias, h, ahead);
+  if (std::isfinite(j.max_length))
+    solve_axial_limit(v, j, j.max_length - j.distance, -1.0, j.upper_impulse, soft, use_bias, h, ahead);
 }
 
 template <int N>
@@ -303,6 +334,31 @@ void solve_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j, const
   apply_turn(v, l);
 }
 
+// A prismatic joint: its angular rows (all k), the motor and the limits along its axis, then the point
+// rows across it, which aim, as solve_point's do, at the end of the sub-step.
+template <int N>
+void solve_prismatic(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias, double h) {
+  solve_orientation(v, j, soft, use_bias);
+  if (j.motor) {
+    const double u = j.axis.dot(relative_anchor_velocity(v, j));
+    const double most = j.max_motor_force * h, old = j.motor_impulse;
+    j.motor_impulse = std::clamp(old - j.axial_mass * (u - j.motor_speed), -most, most);
+    apply(v, j, Vec<N>((j.motor_impulse - old) * j.axis));
+  }
+  if (j.limit) {
+    solve_axial_limit(v, j, j.translation - j.lower_translation, 1.0, j.lower_impulse, soft, use_bias, h, 0.0);
+    solve_axial_limit(v, j, j.upper_translation - j.translation, -1.0, j.upper_impulse, soft, use_bias, h, 0.0);
+  }
+  Vec<N> e = relative_anchor_velocity(v, j);
+  if (use_bias) e += (0.5 * h) * anchor_curvature(v, j) + soft.bias_rate * j.separation;
+  e -= j.axis * j.axis.dot(e);
+  const double mass_scale = use_bias ? soft.mass_scale : 1.0, impulse_scale = use_bias ? soft.impulse_scale : 0.0;
+  Vec<N> change = -mass_scale * (j.mass * e) - impulse_scale * j.linear_impulse;
+  change -= j.axis * j.axis.dot(change);  // (round-off: the rows act across the axis only)
+  j.linear_impulse += change;
+  apply(v, j, change);
+}
+
 // A revolute or weld joint: its angular rows, then its point rows. A soft weld is a spring in both
 // passes (its own frequency), as a distance joint's spring is.
 template <int N>
@@ -322,6 +378,7 @@ void solve_angular_joint(const JointBodiesView<N>& v, JointConstraint<N>& j, con
 // The accumulated turn impulse on b (N m s, world): the rows off the plane, the motor and the limits.
 template <int N>
 BivColumn<N> turn_impulse(const JointConstraint<N>& j) {
+  if (j.type != JointType::Revolute) return j.angular_impulse.c;
   return j.angular_impulse.c + (j.motor_impulse + j.lower_angle_impulse - j.upper_angle_impulse) * j.plane.c;
 }
 
@@ -351,7 +408,7 @@ void warm_start_joints(ContactState<N>& s) {
     if (!j.active) continue;
     const JointBodiesView<N> v = view(s, j);
     apply(v, j, joint_impulse(j));
-    if (j.type == JointType::Revolute || j.type == JointType::Weld) apply_turn(v, turn_impulse(j));
+    if (holds_orientation(j)) apply_turn(v, turn_impulse(j));
   }
 }
 
@@ -361,7 +418,9 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
   JointSolver<N>& js = s.joints;
   for (JointConstraint<N>& j : js.slots) {
     if (!j.active) continue;
-    if (!use_bias) place_joint(bodies, j);  // (the relax pass: the joint as the position update left it)
+    // (the relax pass: the joint as the position update left it; the orientation error only for a soft
+    // weld, whose spring acts in both passes)
+    if (!use_bias) place_joint(bodies, j, j.spring);
     const JointBodiesView<N> v = view(s, j);
     switch (j.type) {
       case JointType::Point:
@@ -369,6 +428,9 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
         break;
       case JointType::Distance:
         solve_distance(v, j, js.soft, use_bias, js.h);
+        break;
+      case JointType::Prismatic:
+        solve_prismatic(v, j, js.soft, use_bias, js.h);
         break;
       case JointType::Revolute:
       case JointType::Weld:
@@ -380,13 +442,16 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
 
 template <int N>
 Vec<N> joint_impulse(const JointConstraint<N>& j) {
-  return j.type == JointType::Distance ? Vec<N>(axial_impulse(j) * j.axis) : j.linear_impulse;
+  if (j.type == JointType::Distance) return axial_impulse(j) * j.axis;
+  if (j.type == JointType::Prismatic)
+    return j.linear_impulse + (j.motor_impulse + j.lower_impulse - j.upper_impulse) * j.axis;
+  return j.linear_impulse;
 }
 
 template <int N>
 Bivector<N> joint_turn_impulse(const JointConstraint<N>& j) {
   Bivector<N> l;
-  if (j.type == JointType::Revolute || j.type == JointType::Weld) l.c = turn_impulse(j);
+  if (holds_orientation(j)) l.c = turn_impulse(j);
   return l;
 }
 

@@ -60,7 +60,8 @@ struct SceneInteraction {
 // A joint ("joints", docs/scene-format.md): its definition, the bodies given as their indices in
 // Scene::bodies (the BodyIds make_world gives them).
 template <int N>
-using SceneJoint = std::variant<PointJointDef<N>, DistanceJointDef<N>, RevoluteJointDef<N>, WeldJointDef<N>>;
+using SceneJoint =
+    std::variant<PointJointDef<N>, DistanceJointDef<N>, RevoluteJointDef<N>, PrismaticJointDef<N>, WeldJointDef<N>>;
 
 template <int N>
 struct Scene {
