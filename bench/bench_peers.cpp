@@ -2,6 +2,8 @@
 //   Pyramid2D_{Wedge,Box2Dv3}/<rows>   Box2D's pyramid, 20, 40 and 100 rows (210, 820 and 5,050 boxes)
 //   Pile3D_{Wedge,Jolt}                1,000 boxes dropped in a grid onto the ground (as wedge_bench_contact)
 //   JoltPyramid_{Wedge,Jolt}           Jolt's PerformanceTest pyramid, 1,240 boxes in 15 staggered layers
+//   JointGrid_{Wedge,Box2Dv3}          Box2D v3's joint_grid: 100 x 100 disks on 19,800 revolute joints,
+//                                      at Box2D's joint stiffness and sub-steps (60 Hz, 4)
 // Built only when a peer's source folder is given to CMake (WEDGE_BOX2D_V3_DIR, WEDGE_JOLT_DIR); each
 // engine runs with its own defaults and sleeping off, one thread; the .../threads:2 runs give each engine
 // both cores (Wedge: WorldSettings::workers; Box2D v3: its scheduler; Jolt: its thread pool) and report
@@ -38,7 +40,9 @@ struct Run {
 };
 // The pyramids start at rest: 2 s settle untimed, 2 s timed. The pile falls for about 2 s and heaps up:
 // 10 s untimed. Jolt's pyramid drops 0.5 m per layer: 2 s untimed.
-constexpr Run kPyramid{120, 120}, kPile{600, 300}, kJoltPyramid{120, 300};
+// The joint grid falls from its straight lines and swings: 1 s untimed, 2 s timed.
+constexpr Run kPyramid{120, 120}, kPile{600, 300}, kJoltPyramid{120, 300}, kJointGrid{60, 120};
+constexpr int kGrid = 100;  // disks per side (Box2D v3's joint_grid)
 
 // Warm-up, then the timed steps, then the counters. `Scene` has step(), max_speed(), moving(v), height(k),
 // count() (the peers' wrappers; Wedge's through WedgeScene).
@@ -93,6 +97,15 @@ void JoltPyramid_Wedge(benchmark::State& state) {
   WedgeScene<3> scene(wedge_jolt_pyramid(), int(state.range(0)));
   run(state, scene, kJoltPyramid);
 }
+void JointGrid_Wedge(benchmark::State& state) {
+  WedgeScene<2> scene(joint_grid(kGrid));
+  run(state, scene, kJointGrid);
+}
+// (8 sub-steps: where Wedge's grid holds; docs/joints.md, "Heavy loads on light bodies")
+void JointGrid_Wedge_substeps8(benchmark::State& state) {
+  WedgeScene<2> scene(joint_grid(kGrid, 8));
+  run(state, scene, kJointGrid);
+}
 // A 2D pyramid benchmark at 20, 40 and 100 rows, one thread.
 template <typename Fn>
 void add_rows(const char* name, Fn fn) {
@@ -124,6 +137,10 @@ const bool registered_wedge = [] {
   add_rows("Pyramid2D_Wedge_substeps4", Pyramid2D_Wedge_substeps4);
   add("Pile3D_Wedge", Pile3D_Wedge, kPile.timed);
   add("JoltPyramid_Wedge", JoltPyramid_Wedge, kJoltPyramid.timed);
+  using Fn = void (*)(benchmark::State&);
+  for (const auto& [name, fn] : {std::pair<const char*, Fn>{"JointGrid_Wedge", JointGrid_Wedge},
+                                 std::pair<const char*, Fn>{"JointGrid_Wedge_substeps8", JointGrid_Wedge_substeps8}})
+    benchmark::RegisterBenchmark(name, fn)->Iterations(kJointGrid.timed)->Unit(benchmark::kMillisecond);
   return true;
 }();
 
@@ -138,7 +155,12 @@ void Pyramid2D_Box2Dv3_substeps8_60Hz(benchmark::State& state) {
   Box2DV3Scene scene(peers_pyramid(int(state.range(0))), false, 1, 8, 60.0f);
   run(state, scene, kPyramid);
 }
+void JointGrid_Box2Dv3(benchmark::State& state) {
+  Box2DV3JointGrid scene(kGrid);
+  run(state, scene, kJointGrid);
+}
 const bool registered_box2d = [] {
+  benchmark::RegisterBenchmark("JointGrid_Box2Dv3", JointGrid_Box2Dv3)->Iterations(kJointGrid.timed)->Unit(benchmark::kMillisecond);
   add("Pyramid2D_Box2Dv3", Pyramid2D_Box2Dv3, kPyramid.timed, {20, 40, 100});
   add_rows("Pyramid2D_Box2Dv3_substeps8_60Hz", Pyramid2D_Box2Dv3_substeps8_60Hz);
   return true;

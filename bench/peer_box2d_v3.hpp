@@ -73,4 +73,71 @@ class Box2DV3Scene {
   std::vector<b2BodyId> boxes_;  // in Wedge's body order (ground excluded)
 };
 
+// Box2D v3's own joint_grid benchmark scene (shared/benchmarks.c, CreateJointGrid), built as it builds
+// it: disks of radius 0.4 m that a filter keeps from colliding, revolute joints at Box2D's defaults
+// (60 Hz, damping ratio 2), 4 sub-steps, sleeping off; one worker thread. The Wedge twin is
+// wedge_scenes.hpp's joint_grid.
+class Box2DV3JointGrid {
+ public:
+  explicit Box2DV3JointGrid(int n) {
+    b2WorldDef def = b2DefaultWorldDef();
+    def.workerCount = 1;
+    def.gravity = b2Vec2{0.0f, float(-kGravity)};
+    def.enableSleep = false;
+    world_ = b2CreateWorld(&def);
+    b2ShapeDef shape = b2DefaultShapeDef();
+    shape.density = 1.0f;
+    shape.filter.categoryBits = 2;
+    shape.filter.maskBits = ~2u;
+    const b2Circle circle = {{0.0f, 0.0f}, float(kGridRadius)};
+    b2RevoluteJointDef joint = b2DefaultRevoluteJointDef();
+    b2BodyDef body = b2DefaultBodyDef();
+    std::vector<b2BodyId> ids;
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < n; ++i) {
+        body.type = k >= n / 2 - 3 && k <= n / 2 + 3 && i == 0 ? b2_staticBody : b2_dynamicBody;
+        body.position = b2Pos{float(k), float(-i)};
+        const b2BodyId id = b2CreateBody(world_, &body);
+        b2CreateCircleShape(id, &shape, &circle);
+        if (i > 0) {
+          joint.base.bodyIdA = ids[ids.size() - 1];
+          joint.base.bodyIdB = id;
+          joint.base.localFrameA.p = b2Vec2{0.0f, -0.5f};
+          joint.base.localFrameB.p = b2Vec2{0.0f, 0.5f};
+          b2CreateRevoluteJoint(world_, &joint);
+        }
+        if (k > 0) {
+          joint.base.bodyIdA = ids[ids.size() - std::size_t(n)];
+          joint.base.bodyIdB = id;
+          joint.base.localFrameA.p = b2Vec2{0.5f, 0.0f};
+          joint.base.localFrameB.p = b2Vec2{-0.5f, 0.0f};
+          b2CreateRevoluteJoint(world_, &joint);
+        }
+        ids.push_back(id);
+        if (body.type == b2_dynamicBody) bodies_.push_back(id);
+      }
+  }
+  ~Box2DV3JointGrid() { b2DestroyWorld(world_); }
+  Box2DV3JointGrid(const Box2DV3JointGrid&) = delete;
+  Box2DV3JointGrid& operator=(const Box2DV3JointGrid&) = delete;
+
+  void step() { b2World_Step(world_, float(kDt), 4); }
+  double max_speed() const {
+    double v = 0.0;
+    for (const b2BodyId id : bodies_) v = std::max(v, double(b2Length(b2Body_GetLinearVelocity(id))));
+    return v;
+  }
+  int moving(double speed) const {
+    int count = 0;
+    for (const b2BodyId id : bodies_) count += b2Length(b2Body_GetLinearVelocity(id)) > speed ? 1 : 0;
+    return count;
+  }
+  double height(std::size_t k) const { return double(b2Body_GetPosition(bodies_[k]).y); }
+  std::size_t count() const { return bodies_.size(); }
+
+ private:
+  b2WorldId world_;
+  std::vector<b2BodyId> bodies_;  // the dynamic ones, in creation order
+};
+
 }  // namespace wedge::bench
