@@ -188,11 +188,20 @@ bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, Joint
 
 // How the anchors' separation bends away from a straight line in the sub-step: the second derivative of
 // p_b - p_a, which for anchors turning with their bodies is (r_b . w_b) . w_b - (r_a . w_a) . w_a (d/dt
-// of r is r . w).
+// of r is r . w). It is a small-turn term, quadratic in w: a body turning by more than kAheadTurn in a
+// sub-step has its part held at that turn's value (scaled by (kAheadTurn / h|w|)^2), so that a body
+// already spinning out of control is not driven faster by it (docs/joints.md, heavy loads).
+constexpr double kAheadTurn = 0.25;  // rad per sub-step
 template <int N>
-Vec<N> anchor_curvature(const JointBodiesView<N>& v, const JointConstraint<N>& j) {
-  Vec<N> q = dot<N>(Vec<N>(dot<N>(j.rb, v.b->w)), v.b->w);
-  if (v.a) q -= dot<N>(Vec<N>(dot<N>(j.ra, v.a->w)), v.a->w);
+Vec<N> turning_curvature(const Vec<N>& r, const Bivector<N>& w, double h) {
+  const Vec<N> q = dot<N>(Vec<N>(dot<N>(r, w)), w);
+  const double turn = h * w.norm();
+  return turn > kAheadTurn ? Vec<N>(q * (kAheadTurn * kAheadTurn / (turn * turn))) : q;
+}
+template <int N>
+Vec<N> anchor_curvature(const JointBodiesView<N>& v, const JointConstraint<N>& j, double h) {
+  Vec<N> q = turning_curvature(j.rb, v.b->w, h);
+  if (v.a) q -= turning_curvature(j.ra, v.a->w, h);
   return q;
 }
 
@@ -218,7 +227,7 @@ double solve_axial_row(const JointBodiesView<N>& v, JointConstraint<N>& j, doubl
 template <int N>
 void solve_point(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias, double h) {
   Vec<N> u = relative_anchor_velocity(v, j);
-  if (h > 0.0) u += (0.5 * h) * anchor_curvature(v, j);
+  if (h > 0.0) u += (0.5 * h) * anchor_curvature(v, j, h);
   const Vec<N> bias = use_bias ? Vec<N>(soft.bias_rate * j.separation) : Vec<N>(Vec<N>::Zero());
   const double mass_scale = use_bias ? soft.mass_scale : 1.0;
   const double impulse_scale = use_bias ? soft.impulse_scale : 0.0;
@@ -230,11 +239,11 @@ void solve_point(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softn
 // The distance's second derivative along a straight-line motion of the anchors, |u_perp|^2 / d, plus
 // the anchors' own curvature along the axis: what (h/2) times brings the length at the sub-step's end.
 template <int N>
-double distance_curvature(const JointBodiesView<N>& v, const JointConstraint<N>& j) {
+double distance_curvature(const JointBodiesView<N>& v, const JointConstraint<N>& j, double h) {
   if (j.distance <= 1e-12) return 0.0;
   const Vec<N> u = relative_anchor_velocity(v, j);
   const double along = j.axis.dot(u);
-  return std::max(u.squaredNorm() - along * along, 0.0) / j.distance + j.axis.dot(anchor_curvature(v, j));
+  return std::max(u.squaredNorm() - along * along, 0.0) / j.distance + j.axis.dot(anchor_curvature(v, j, h));
 }
 
 // A one-sided row along the axis (a limit, impulses >= 0): a limit the anchors are still inside may close
@@ -256,7 +265,7 @@ void solve_distance(const JointBodiesView<N>& v, JointConstraint<N>& j, const So
                     double h) {
   const Softness rigid{};
   const Softness& correction = use_bias ? soft : rigid;
-  const double ahead = use_bias ? 0.5 * h * distance_curvature(v, j) : 0.0;
+  const double ahead = use_bias ? 0.5 * h * distance_curvature(v, j, h) : 0.0;
   if (!j.spring || j.min_length >= j.max_length) {
     const double length = j.spring ? j.min_length : j.length;
     const double bias = use_bias ? soft.bias_rate * (j.distance - length) : 0.0;
@@ -350,7 +359,7 @@ void solve_prismatic(const JointBodiesView<N>& v, JointConstraint<N>& j, const S
     solve_axial_limit(v, j, j.upper_translation - j.translation, -1.0, j.upper_impulse, soft, use_bias, h, 0.0);
   }
   Vec<N> e = relative_anchor_velocity(v, j);
-  if (use_bias) e += (0.5 * h) * anchor_curvature(v, j) + soft.bias_rate * j.separation;
+  if (use_bias) e += (0.5 * h) * anchor_curvature(v, j, h) + soft.bias_rate * j.separation;
   e -= j.axis * j.axis.dot(e);
   const double mass_scale = use_bias ? soft.mass_scale : 1.0, impulse_scale = use_bias ? soft.impulse_scale : 0.0;
   Vec<N> change = -mass_scale * (j.mass * e) - impulse_scale * j.linear_impulse;
