@@ -195,8 +195,8 @@ constexpr double kAheadTurn = 0.25;  // rad per sub-step
 template <int N>
 Vec<N> turning_curvature(const Vec<N>& r, const Bivector<N>& w, double h) {
   const Vec<N> q = dot<N>(Vec<N>(dot<N>(r, w)), w);
-  const double turn = h * w.norm();
-  return turn > kAheadTurn ? Vec<N>(q * (kAheadTurn * kAheadTurn / (turn * turn))) : q;
+  const double turn_squared = h * h * w.c.squaredNorm();  // (no square root on the hot path)
+  return turn_squared > kAheadTurn * kAheadTurn ? Vec<N>(q * (kAheadTurn * kAheadTurn / turn_squared)) : q;
 }
 template <int N>
 Vec<N> anchor_curvature(const JointBodiesView<N>& v, const JointConstraint<N>& j, double h) {
