@@ -161,37 +161,42 @@ template <int N>
 struct SandwichMatrixTerms {
   using Bl = Blades<N>;
   static constexpr int kE = Bl::kEven;
-  // The even blades in rotor order, computed once (not in each call of folded(): compilers that do not
-  // memoise constant evaluation would sort them for every coefficient).
+  // The even blades in rotor order and their positions, computed once (not in each call of the helpers
+  // below: compilers that do not memoise constant evaluation would sort them for every coefficient).
   static constexpr auto even = Bl::template order<Set::Even>();
-  // coef(i, j, a, b) for ordered pairs, folded onto a <= b.
-  static constexpr int folded(int i, int j, int a, int b) {
-    auto raw = [&](int x, int y) {
-      const unsigned ea = even[x], eb = even[y], ej = 1u << j;
-      const unsigned m1 = ea ^ ej, m2 = m1 ^ eb;
-      if (m2 != (1u << i)) return 0;
-      return blade_product_sign(ea, ej) * blade_product_sign(m1, eb) * reverse_sign(grade_of(eb));
-    };
-    return a == b ? raw(a, a) : raw(a, b) + raw(b, a);
+  static constexpr auto even_index = Bl::template index<Set::Even>();
+  // <e_a e_j ~e_b>_i is a vector only when e_b = e_a e_j e_i up to sign: for each (i, j, a) one partner b.
+  static constexpr int partner(int i, int j, int a) { return even_index[even[a] ^ (1u << j) ^ (1u << i)]; }
+  // The coefficient of R_a R_b in M(i, j) for the ordered pair (a, b) = (a, partner(i, j, a)).
+  static constexpr int raw(int i, int j, int a) {
+    const unsigned ea = even[a], eb = even[partner(i, j, a)], m1 = ea ^ (1u << j);
+    return blade_product_sign(ea, 1u << j) * blade_product_sign(m1, eb) * reverse_sign(grade_of(eb));
+  }
+  // coef(i, j, a, b) folded onto a <= b: the pair arises once from a and once from b = partner(a).
+  static constexpr int folded(int i, int j, int a) {
+    const int b = partner(i, j, a);
+    return a == b ? raw(i, j, a) : raw(i, j, a) + raw(i, j, b);
   }
   static constexpr int count() {
     int n = 0;
     for (int i = 0; i < N; ++i)
       for (int j = 0; j < N; ++j)
-        for (int a = 0; a < kE; ++a)
-          for (int b = a; b < kE; ++b) n += folded(i, j, a, b) != 0 ? 1 : 0;
+        for (int a = 0; a < kE; ++a) n += partner(i, j, a) >= a && folded(i, j, a) != 0 ? 1 : 0;
     return n;
   }
+  // Terms ordered by column j, row i, then a (each a has one b), as the sums in to_matrix run.
   static constexpr std::array<QuadTerm, count()> make() {
     std::array<QuadTerm, count()> t{};
     int n = 0;
     for (int j = 0; j < N; ++j)
       for (int i = 0; i < N; ++i)
-        for (int a = 0; a < kE; ++a)
-          for (int b = a; b < kE; ++b)
-            if (const int c = folded(i, j, a, b); c != 0)
-              t[n++] = QuadTerm{std::uint16_t(a), std::uint16_t(b), std::uint16_t(i), std::uint16_t(j),
-                                std::int8_t(c)};
+        for (int a = 0; a < kE; ++a) {
+          const int b = partner(i, j, a);
+          if (b < a) continue;
+          if (const int c = folded(i, j, a); c != 0)
+            t[n++] = QuadTerm{std::uint16_t(a), std::uint16_t(b), std::uint16_t(i), std::uint16_t(j),
+                              std::int8_t(c)};
+        }
     return t;
   }
   static constexpr auto table = make();
