@@ -241,6 +241,34 @@ int World<N>::joint_count() const {
 }
 
 template <int N>
+std::vector<JointId> World<N>::joint_ids() const {
+  const auto& slots = contact_->joints.slots;
+  std::vector<JointId> ids;
+  for (std::size_t i = 0; i < slots.size(); ++i)
+    if (slots[i].live) ids.push_back(JointId{std::uint32_t(i), slots[i].generation});
+  return ids;
+}
+
+template <int N>
+JointGeometry<N> World<N>::joint_geometry(JointId id) const {
+  const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
+  JointGeometry<N> g;
+  g.type = j.type;
+  if (j.a >= 0) g.body_a = BodyId{std::uint32_t(j.a)};
+  g.body_b = BodyId{std::uint32_t(j.b)};
+  g.anchor_a = joint_anchor_a(id);
+  g.anchor_b = joint_anchor_b(id);
+  const Rotor<N> ra = joint_rotor_a(j);
+  if (j.type == JointType::Revolute) {
+    g.plane_u = rotate(ra, j.u_a);
+    g.plane_v = rotate(ra, j.v_a);
+    g.plane_u_b = rotate(bodies_[j.b].rotor, j.u_b);
+  }
+  if (j.type == JointType::Prismatic) g.axis = rotate(ra, j.axis_local);
+  return g;
+}
+
+template <int N>
 JointType World<N>::joint_type(JointId id) const {
   return contact_->joints.slots[check(id)].type;
 }
@@ -281,6 +309,8 @@ Vec<N> World<N>::joint_force(JointId id) const {
   template void World<N>::remove_joint(JointId); \
   template bool World<N>::has_joint(JointId) const; \
   template int World<N>::joint_count() const; \
+  template std::vector<JointId> World<N>::joint_ids() const; \
+  template JointGeometry<N> World<N>::joint_geometry(JointId) const; \
   template JointType World<N>::joint_type(JointId) const; \
   template Vec<N> World<N>::joint_anchor_a(JointId) const; \
   template Vec<N> World<N>::joint_anchor_b(JointId) const; \

@@ -100,6 +100,19 @@ struct WeldJointDef : JointBodies<N> {
 };
 
 // A handle to a joint: its slot and the generation it was made in, so a removed joint's id is refused.
+// Where a joint is now, world frame (World::joint_geometry): what a viewer draws of it.
+template <int N>
+struct JointGeometry {
+  JointType type = JointType::Point;
+  std::optional<BodyId> body_a;  // none: the world
+  BodyId body_b;
+  Vec<N> anchor_a = Vec<N>::Zero(), anchor_b = Vec<N>::Zero();  // m
+  // Revolute: the plane of rotation, body_a's two vectors (unit, orthogonal), and body_b's first vector,
+  // which lies in the plane turned from plane_u by the joint's angle. Zero for other joints.
+  Vec<N> plane_u = Vec<N>::Zero(), plane_v = Vec<N>::Zero(), plane_u_b = Vec<N>::Zero();
+  Vec<N> axis = Vec<N>::Zero();  // prismatic: the axis (unit, body_a's); zero for other joints
+};
+
 struct JointId {
   std::uint32_t index = 0;
   std::uint32_t generation = 0;

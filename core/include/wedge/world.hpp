@@ -167,6 +167,8 @@ class World {
   void remove_joint(JointId id);
   bool has_joint(JointId id) const;
   int joint_count() const;  // live joints
+  std::vector<JointId> joint_ids() const;  // the live joints, lowest slot first
+  JointGeometry<N> joint_geometry(JointId id) const;  // anchors, plane or axis, world, as placed now
   JointType joint_type(JointId id) const;
   Vec<N> joint_anchor_a(JointId id) const;  // m, world: where each anchor is now
   Vec<N> joint_anchor_b(JointId id) const;

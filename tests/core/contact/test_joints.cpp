@@ -996,3 +996,80 @@ TEMPLATE_TEST_CASE("joints: a column of light disks holds a heavy end mass withi
   CHECK(spin < 1.0);
   CHECK(std::abs(world.body(ids.back()).center[0]) < 1e-3);
 }
+
+// What a viewer draws (World::joint_ids, joint_geometry): the live joints in slot order, their anchors
+// where the bodies carry them, a revolute's plane turned with body a and body b's vector turned in it by
+// the joint's angle, a prismatic's axis turned with body a. Expected values from rotation matrices built
+// here, not from the rotors the world holds.
+TEMPLATE_TEST_CASE("joints: a world lists its joints and where they are now", "[joints]", D3, D4, D5, D6) {
+  constexpr int N = TestType::value;
+  World<N> world = pendulum_world<N>();
+  const BodyId door = world.add_body(box<N>(Vec<N>::Constant(0.1), 500.0, xy<N>(0.5, 0.0)));
+  const BodyId carriage = world.add_body(box<N>(Vec<N>::Constant(0.1), 500.0, xy<N>(0.0, 2.0)));
+  const BodyId slider = world.add_body(box<N>(Vec<N>::Constant(0.05), 500.0, xy<N>(0.3, 2.0)));
+  RevoluteJointDef<N> hinge;  // the door turns in the x-z plane about the world point (0.4, 0, ..)
+  hinge.body_b = door;
+  hinge.anchor_a = xy<N>(0.4, 0.0);
+  hinge.anchor_b = xy<N>(-0.1, 0.0);
+  hinge.plane_u_a = hinge.plane_u_b = Vec<N>::Unit(0);
+  hinge.plane_v_a = hinge.plane_v_b = Vec<N>::Unit(2);
+  const JointId h = world.add_joint(hinge);
+  PointJointDef<N> spare;
+  spare.body_b = carriage;
+  spare.anchor_a = xy<N>(0.0, 2.1);
+  spare.anchor_b = xy<N>(0.0, 0.1);
+  const JointId removed = world.add_joint(spare);
+  PrismaticJointDef<N> rail;  // the slider runs along the carriage's x axis
+  rail.body_a = carriage;
+  rail.body_b = slider;
+  rail.anchor_a = xy<N>(0.1, 0.0);
+  rail.anchor_b = xy<N>(-0.2, 0.0);
+  const JointId p = world.add_joint(rail);
+  world.remove_joint(removed);
+
+  const std::vector<JointId> ids = world.joint_ids();
+  REQUIRE(ids.size() == 2);
+  CHECK(ids[0] == h);
+  CHECK(ids[1] == p);
+
+  // Turn the door by theta in its plane about the hinge, and the carriage (body a of the rail) by phi in
+  // the x-y plane about its centre.
+  const double theta = 0.7, phi = 0.3;
+  auto plane_turn = [](int i, int j, double angle) {  // e_i toward e_j
+    Mat<N> m = Mat<N>::Identity();
+    m(i, i) = m(j, j) = std::cos(angle);
+    m(j, i) = std::sin(angle);
+    m(i, j) = -std::sin(angle);
+    return m;
+  };
+  const Mat<N> door_turn = plane_turn(0, 2, theta), carriage_turn = plane_turn(0, 1, phi);
+  world.body(door).rotor = rotor_from_matrix<N>(door_turn);
+  world.body(door).center = xy<N>(0.4, 0.0) + door_turn * xy<N>(0.1, 0.0);
+  world.body(carriage).rotor = rotor_from_matrix<N>(carriage_turn);
+
+  const JointGeometry<N> g = world.joint_geometry(h);
+  CHECK(g.type == JointType::Revolute);
+  CHECK(!g.body_a);
+  CHECK(g.body_b == door);
+  CHECK((g.anchor_a - xy<N>(0.4, 0.0)).norm() < 1e-12);
+  CHECK((g.anchor_b - xy<N>(0.4, 0.0)).norm() < 1e-12);  // the door turned about its hinge
+  CHECK((g.plane_u - Vec<N>::Unit(0)).norm() < 1e-12);
+  CHECK((g.plane_v - Vec<N>::Unit(2)).norm() < 1e-12);
+  CHECK((g.plane_u_b - (std::cos(theta) * Vec<N>::Unit(0) + std::sin(theta) * Vec<N>::Unit(2))).norm() < 1e-12);
+  CHECK(g.axis == Vec<N>::Zero());
+
+  const JointGeometry<N> r = world.joint_geometry(p);
+  CHECK(r.type == JointType::Prismatic);
+  CHECK((r.body_a && *r.body_a == carriage));
+  CHECK(r.body_b == slider);
+  CHECK((r.anchor_a - (xy<N>(0.0, 2.0) + carriage_turn * xy<N>(0.1, 0.0))).norm() < 1e-12);
+  CHECK((r.axis - carriage_turn.col(0)).norm() < 1e-12);
+  CHECK(r.plane_u == Vec<N>::Zero());
+  CHECK_THROWS_WITH(world.joint_geometry(removed), Catch::Contains("is not a live joint"));
+
+  // A joint added after the removal takes the freed slot with a new generation.
+  const JointId again = world.add_joint(spare);
+  CHECK(again.index == removed.index);
+  CHECK(again.generation != removed.generation);
+  CHECK(world.joint_ids() == std::vector<JointId>{h, again, p});
+}
