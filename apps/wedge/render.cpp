@@ -1,10 +1,11 @@
 // wedge render SCENE.json --steps N [--every K] [--dt H] [--w W] --out DIR [--size WxH] [--subdivisions S]
-//              [--sheet FILE.png] [--replay RECORDING...]
+//              [--sheet FILE.png] [--replay RECORDING...] [--no-joints]
 //
 // Simulates a scene and draws the 3D slice of every K-th state (step 0 included) offscreen, through
 // OSMesa, into DIR/frame_00000.png, frame_00001.png, ... and, with --sheet, one contact sheet: up to 12
 // of those frames picked evenly over the run (first and last included), downscaled into a grid 4 wide,
-// each labelled with its time. Everything is checked and the whole run is simulated before the first
+// each labelled with its time. The joints are marked over the bodies as `wedge view` marks them (anchors,
+// rods, a revolute joint's plane and turn, a prismatic joint's axis). Everything is checked and the whole run is simulated before the first
 // frame is written. Every PNG is written atomically (a .part file renamed into place); if anything fails
 // or the run is interrupted (Ctrl-C) while writing, the frames and sheet written so far are removed, and
 // so is the output folder if this run made it and it is left empty.
@@ -139,6 +140,8 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
       seen.resize(meshes.size(), false);
       for (std::size_t k = 0; k < meshes.size(); ++k) seen[k] = seen[k] || !meshes[k].empty();
       add_box_corners(meshes, points);
+      const JointMarks joints = joint_marks(world, slices, meets_slice(meshes));  // (a pendulum's pivot too)
+      points.insert(points.end(), joints.anchors.begin(), joints.anchors.end());
     };
     Progress sim_progress("simulate", run.steps);
     record();
@@ -169,6 +172,7 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
                 << " the drawn slice in any frame (move the slice with --w)\n";
 
     render::FrameDesc frame = fitted_frame(scene, world, slices, points, size.width, size.height);
+    const double mark = mark_size(slices);
 
     // The sheet's tiles: frames spread evenly over the run, the first and the last included.
     const int frame_count = int(frames.size());
@@ -217,9 +221,14 @@ int render(const Json& doc, const RenderOptions& o, const StepOptions& run, cons
           if (sb.color) color = {float((*sb.color)[0]), float((*sb.color)[1]), float((*sb.color)[2])};
           frame.meshes.push_back({&meshes[k], color});
         }
-        std::vector<slicing::DisplayMesh<3>> marks;
-        for (const Mark& m : frame_marks[f]) marks.push_back(marker_cube(m.at, m.half));
-        for (std::size_t k = 0; k < marks.size(); ++k) frame.meshes.push_back({&marks[k], frame_marks[f][k].color, true});
+        std::vector<slicing::DisplayMesh<3>> marks;  // the joints (as the viewer draws them), then the hands
+        std::vector<render::Color> colors;
+        if (!o.no_joints) add_joint_meshes(joint_marks(world, slices, meets_slice(meshes)), mark, marks, colors);
+        for (const Mark& m : frame_marks[f]) {
+          marks.push_back(marker_cube(m.at, m.half));
+          colors.push_back(m.color);
+        }
+        for (std::size_t k = 0; k < marks.size(); ++k) frame.meshes.push_back({&marks[k], colors[k], true});
         renderer.draw(frame, size.width, size.height);
         char name[32];
         std::snprintf(name, sizeof name, "frame_%05zu.png", f);
@@ -287,6 +296,9 @@ CLI::App* add_render_verb(CLI::App& app, RenderOptions& o) {
                   "holding, yellow with a haptic pulse, and the hit's point)")
       ->type_name("RECORDING...")
       ->expected(1, -1);
+  cmd->add_flag("--no-joints", o.no_joints,
+                "Leave out the joint marks (drawn otherwise: anchors, rods, a revolute joint's plane and turn, a "
+                "prismatic joint's axis)");
   cmd->add_option("--subdivisions", o.subdivisions,
                   "Tessellation level of round shapes (1..64; default 16 in 3D, 8 in 4D, 4 in 5D, 2 in 6D)")
       ->type_name("S");

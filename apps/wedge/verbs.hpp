@@ -46,6 +46,7 @@ struct RenderOptions {
   std::string steps, dt, every, w, size, subdivisions;
   std::string out, sheet;
   std::vector<std::string> replay;  // recordings driving the scene through the input layer (as `replay`)
+  bool no_joints = false;           // leave out the joint marks
 };
 CLI::App* add_render_verb(CLI::App& app, RenderOptions& options);
 int run_render(const RenderOptions& options);
@@ -89,7 +90,7 @@ struct ViewOptions {
   std::string scene;
   std::string w, size, subdivisions, play_subdivisions, frames, screenshot, mouse, record, events;
   std::vector<std::string> replay;
-  bool hash = false, contacts = false;
+  bool hash = false, contacts = false, no_joints = false;
 };
 CLI::App* add_view_verb(CLI::App& app, ViewOptions& options);
 int run_view(const ViewOptions& options);

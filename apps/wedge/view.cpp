@@ -1,15 +1,15 @@
 // wedge view SCENE.json [--w W] [--size WxH] [--subdivisions S] [--play-subdivisions S]
 //                        [--replay RECORDING... | --record FILE] [--mouse FILE] [--events FILE] [--contacts]
-//                        [--hash] [--frames N --screenshot FILE.png]
+//                        [--no-joints] [--hash] [--frames N --screenshot FILE.png]
 //
 // The desktop viewer: a window (GLFW, OpenGL 3.3 core) drawing the scene's 3D slice with the same renderer
 // as `wedge render`, and a Dear ImGui panel: play, pause, single step, reset, time scale, the slice
 // offsets (w in 4D; two or three in 5D and 6D), the bodies and whether the slice meets them (a click
-// moves the slice through one), contacts on or off, the phone, the pulse log, and the frame time split
+// moves the slice through one), joints and contacts on or off, the phone, the pulse log, and the frame time split
 // into physics, slicing and drawing. The camera orbits (right drag), pans (middle drag) and zooms
 // (wheel); the 3D view fills the window right of the panel. The mouse is a hand of the input layer
 // (grab, drag, turn, throw); --replay drives the scene with recordings instead, as `wedge replay` does.
-// Hands, haptic flashes and contact points are drawn over the bodies (view_overlays.hpp). Without a
+// Hands, haptic flashes, joints and contact points are drawn over the bodies (view_overlays.hpp). Without a
 // display: --frames N draws N frames (each 1/60 s of simulated time while playing) and --screenshot
 // writes the last one as PNG, for tests and pictures; with no display at all the viewer exits with code
 // 2, naming DISPLAY.
@@ -75,7 +75,7 @@ class Viewer {
         window_(file_, width, height),
         gui_(window_.get()),
         orbit_{view_.fitted().camera},
-        controls_{true, 1.0f, std::vector<float>(view_.offsets().begin(), view_.offsets().end()), o.contacts} {
+        controls_{true, 1.0f, std::vector<float>(view_.offsets().begin(), view_.offsets().end()), o.contacts, !o.no_joints} {
     input_.start(window_.get());
     session_.start(view_.slices(), o.events);
   }
@@ -117,9 +117,10 @@ class Viewer {
   // ---- Platform and mouse -------------------------------------------------------------------------
 
   // This frame's mouse and keys (GLFW's, or the script's when there is one), carried out: the script's
-  // slice offsets, body to find, camera fit and phone tilt; C toggles the contact marks, F refits the
-  // camera, the arrow keys tilt the phone; the mouse moves the hand (when it drives the world) and, while
-  // the hand holds nothing, the camera: right drag orbits, middle drag pans, the wheel zooms.
+  // slice offsets, body to find, camera fit and phone tilt; C toggles the contact marks, J the joint
+  // marks, F refits the camera, the arrow keys tilt the phone; the mouse moves the hand (when it drives
+  // the world) and, while the hand holds nothing, the camera: right drag orbits, middle drag pans, the
+  // wheel zooms.
   void poll_input(std::int64_t frame, slicing::Detail detail) {
     mouse_ = input_.read(window_.get(), frame);
     slice_request_ = false;  // the script moved a slider or asked for a body
@@ -134,6 +135,7 @@ class Viewer {
     }
     phone_.take(mouse_, N >= 4);
     if (input_.contacts_key(window_.get())) controls_.show_contacts = !controls_.show_contacts;
+    if (input_.joints_key(window_.get())) controls_.show_joints = !controls_.show_joints;
     fit_request_ = mouse_.fit || input_.fit_key(window_.get());
     input_.tilt_keys(window_.get(), phone_);
     const double dx = input_.dx(mouse_), dy = input_.dy(mouse_);
@@ -179,7 +181,7 @@ class Viewer {
     drawing_start_ = std::chrono::steady_clock::now();
     render::FrameDesc desc = view_.frame(scene_, orbit_.camera);
     view_.add_markers(desc, session_.world(), session_.recorded_hands(), hand_, session_.pulses(),
-                      controls_.show_contacts);
+                      controls_.show_joints, controls_.show_contacts);
     find_hovered();
     view_.draw(renderer_, desc, width_, fb_width_, fb_height_);
   }
@@ -206,7 +208,7 @@ class Viewer {
     panel_clock(file_, world, controls_, asked);
     asked.moved |= panel_slice_offsets<N>(controls_.w, view_.reach());
     ImGui::Separator();
-    if (const std::optional<BodyId> clicked = panel_bodies(world, view_, hovered_, controls_.show_contacts)) {
+    if (const std::optional<BodyId> clicked = panel_bodies(world, view_, hovered_, controls_)) {
       find_body(*clicked);
       asked.moved = true;
     }
@@ -330,6 +332,7 @@ CLI::App* add_view_verb(CLI::App& app, ViewOptions& o) {
                   "gives the same state")
       ->type_name("FILE");
   cmd->add_flag("--contacts", o.contacts, "Show contact points and normals from the start (key C toggles them)");
+  cmd->add_flag("--no-joints", o.no_joints, "Start without the joint marks (key J toggles them)");
   cmd->add_option("--events", o.events,
                   "Write grabs, releases and haptic pulses to FILE (JSON Lines, as wedge replay --events) on exit")
       ->type_name("FILE");

@@ -159,6 +159,7 @@ bool MouseInput::key_went_down(GLFWwindow* window, int key, bool& was) const {
 }
 
 bool MouseInput::contacts_key(GLFWwindow* window) { return key_went_down(window, GLFW_KEY_C, was_c_); }
+bool MouseInput::joints_key(GLFWwindow* window) { return key_went_down(window, GLFW_KEY_J, was_j_); }
 bool MouseInput::fit_key(GLFWwindow* window) { return key_went_down(window, GLFW_KEY_F, was_f_); }
 
 void MouseInput::tilt_keys(GLFWwindow* window, Phone& phone) const {

@@ -130,6 +130,8 @@ class MouseInput {
   MouseState read(GLFWwindow* window, std::int64_t frame);
   // The C key went down this frame (it toggles the contact marks).
   bool contacts_key(GLFWwindow* window);
+  // J went down this frame (it toggles the joint marks).
+  bool joints_key(GLFWwindow* window);
   // F went down this frame: refit the camera.
   bool fit_key(GLFWwindow* window);
   // The arrow keys tilt the phone, a degree a frame.
@@ -150,7 +152,7 @@ class MouseInput {
   std::size_t script_next_ = 0;  // the first script line not yet reached
   MouseState scripted_;          // the mouse as the lines reached so far leave it
   double last_x_ = 0, last_y_ = 0;
-  bool was_left_ = false, was_c_ = false, was_f_ = false;
+  bool was_left_ = false, was_c_ = false, was_f_ = false, was_j_ = false;
   bool key_went_down(GLFWwindow* window, int key, bool& was) const;
 };
 

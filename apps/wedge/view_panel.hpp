@@ -25,6 +25,7 @@ struct Controls {
   float time_scale = 1.0f;
   std::vector<float> w;  // the slice offsets as the sliders hold them; the slice takes them when moved
   bool show_contacts = false;
+  bool show_joints = true;
 };
 
 // What the user asked for in one frame (the panel, or the script's slice fields), done after the frame
@@ -74,12 +75,16 @@ bool panel_slice_offsets(std::vector<float>& w, double reach) {
   return moved;
 }
 
-// The contact marks' switch and the bodies, each marked when the slice misses it or the cursor is over
-// it; a body clicked (4D and up: a 3D scene has no slice to move) is returned.
+// The joint and contact marks' switches and the bodies, each marked when the slice misses it or the cursor
+// is over it; a body clicked (4D and up: a 3D scene has no slice to move) is returned.
 template <int N>
 std::optional<BodyId> panel_bodies(const World<N>& world, const SliceView<N>& view, const std::string& hovered,
-                                   bool& show_contacts) {
-  ImGui::Checkbox("contacts (C)", &show_contacts);
+                                   Controls& controls) {
+  if (world.joint_count() > 0) {
+    ImGui::Checkbox("joints (J)", &controls.show_joints);
+    ImGui::SameLine();
+  }
+  ImGui::Checkbox("contacts (C)", &controls.show_contacts);
   ImGui::Text("%d of %d bodies in the slice", view.in_slice_count(), int(view.body_count()));
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("(click a body to move the slice through its centre)");

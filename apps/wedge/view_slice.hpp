@@ -1,7 +1,7 @@
 // The viewer's slice (`wedge view`: slicing and drawing): the world cut by the viewed 3-flat into one mesh per
 // bounded body (slicing::WorldSlices), the frame the renderer draws of it right of the panel, as `wedge
 // render --size (W-316)xH` draws its picture, and the markers over the bodies (view_overlays.hpp): hands,
-// haptic flashes, contacts.
+// haptic flashes, joints, contacts.
 #pragma once
 
 #include <GLFW/glfw3.h>
@@ -45,14 +45,7 @@ class SliceView {
     for (int i = 0; i < world.body_count(); ++i)
       for (int a = 3; a < N; ++a)
         reach_ = std::max(reach_, std::abs(world.body(BodyId{std::uint32_t(i)}).center[a]) + 1.0);
-    // Contact marks scale with the bodies: a twentieth of the median bounding radius (5 cm for a unit tesseract).
-    mark_ = [&] {
-      std::vector<double> r;
-      for (const auto& e : slices_.entries()) r.push_back(e.radius);
-      if (r.empty()) return 0.05;
-      std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
-      return 0.05 * r[r.size() / 2];
-    }();
+    mark_ = mark_size(slices_);  // (contact and joint marks scale with the bodies)
   }
 
   // The camera fitted to what the world will do left alone: its cut now, and that cut carried along by
@@ -66,6 +59,8 @@ class SliceView {
     slices_.slice(world, cut);
     std::vector<Eigen::Vector3d> corners;
     add_box_corners(cut, corners);
+    const JointMarks joints = joint_marks(world, slices_, meets_slice(cut));  // (a pendulum's pivot too)
+    corners.insert(corners.end(), joints.anchors.begin(), joints.anchors.end());
     const auto& entries = slices_.entries();
     auto center = [&](const World<N>& w, std::size_t k) {
       return slices_.to_slice_point(w.body(BodyId{std::uint32_t(entries[k].body)}).center);
@@ -152,12 +147,14 @@ class SliceView {
 
   // Markers: the hands (recorded ones, or the mouse while it holds: left cyan, right magenta) and, for
   // a quarter second after a haptic pulse, yellow at its contact point and on the hand's marker, grown
-  // by half: a mouse and a screen cannot feel them. Optionally the contacts: orange points, dark normals.
-  // They are added to `desc` as overlays; the meshes live until the next frame's markers.
+  // by half: a mouse and a screen cannot feel them. Optionally the joints (joint_marks) and the
+  // contacts: orange points, dark normals. They are added to `desc` as overlays; the meshes live until
+  // the next frame's markers.
   void add_markers(render::FrameDesc& desc, const World<N>& world, const input::Interaction<N>* recorded,
-                   const MouseHand& hand, PulseDisplay<N>& pulses, bool show_contacts) {
+                   const MouseHand& hand, PulseDisplay<N>& pulses, bool show_joints, bool show_contacts) {
     markers_.clear();
     marker_colors_.clear();
+    if (show_joints) add_joint_meshes(joint_marks(world, slices_, meets_slice(meshes_)), mark_, markers_, marker_colors_);
     mark_hands(world, recorded, hand, pulses);
     if (show_contacts) mark_contacts(world);
     for (std::size_t k = 0; k < markers_.size(); ++k) desc.meshes.push_back({&markers_[k], marker_colors_[k], true});
@@ -202,9 +199,7 @@ class SliceView {
 
   // The contacts of the last step that the slice shows (contact_marks), sized by `mark_`.
   void mark_contacts(const World<N>& world) {
-    std::vector<bool> in(meshes_.size());
-    for (std::size_t k = 0; k < meshes_.size(); ++k) in[k] = !meshes_[k].empty();
-    const ContactMarks contacts = contact_marks(world, slices_, in);
+    const ContactMarks contacts = contact_marks(world, slices_, meets_slice(meshes_));
     for (const auto& [p, n] : contacts.normals) add_marker(needle(p, n, 8 * mark_, 0.3 * mark_), {0.1f, 0.1f, 0.3f});
     for (const Eigen::Vector3d& p : contacts.points) add_marker(marker_cube(p, mark_), {1.0f, 0.2f, 0.0f});
   }
@@ -215,7 +210,7 @@ class SliceView {
   int width_, height_;                           // window px
   render::FrameDesc fitted_;                     // ground, light and the camera (fit)
   double reach_ = 1.0;                           // m
-  double mark_ = 0.05;                           // m: the half size of a contact point's cube
+  double mark_ = 0.05;                           // m: the half size of a contact point's cube (mark_size)
   int in_slice_ = 0;                             // bodies the current cut meets
   std::vector<slicing::DisplayMesh<3>> markers_;
   std::vector<render::Color> marker_colors_;

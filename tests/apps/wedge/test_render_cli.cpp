@@ -235,3 +235,55 @@ TEST_CASE("wedge render --replay draws the scene as recordings drive it, the han
   CHECK(bad.err.find("four.jsonl") != std::string::npos);
   CHECK_FALSE(fs::exists(dir.path() / "bad"));
 }
+
+// The joints are marked over the bodies (view_overlays.hpp): a bob on a rod hung from a point of the world
+// and a door on a revolute hinge. With the marks the picture gains the rod (dark grey, between the pivot
+// and the bob, so above the bob's own pixels) and the hinge's plane (blue); --no-joints leaves them out.
+// The camera frames the anchors too (the pivot), with the marks or without.
+TEST_CASE("wedge render marks the joints: the rod of a pendulum, a revolute joint's plane", "[cli][render]") {
+  TempDir dir;
+  const std::string bodies =
+      R"({"name": "bob", "shape": {"type": "ball", "radius": 0.15}, "position": [0, -1, 0, 0], "color": [1, 0, 0]},
+         {"name": "door", "shape": {"type": "box", "half_extents": [0.3, 0.4, 0.03, 0.03]}, "position": [1, -0.5, 0, 0],
+          "color": [1, 0, 0]})";
+  dir.write("joined.json", R"({"dim": 4, "bodies": [)" + bodies + R"(], "joints": [
+      {"type": "distance", "body_b": "bob", "anchor_a": [0, 0, 0, 0]},
+      {"type": "revolute", "body_b": "door", "anchor_a": [0.7, -0.5, 0, 0], "anchor_b": [-0.3, 0, 0, 0],
+       "plane_a": [[1, 0, 0, 0], [0, 0, 1, 0]], "plane_b": [[1, 0, 0, 0], [0, 0, 1, 0]]}]})");
+  dir.write("free.json", R"({"dim": 4, "bodies": [)" + bodies + "]}");
+  const std::string view = R"( --steps 0 --size 320x240 --out )";
+  const Result marked = dir.run("render joined.json" + view + "marked");
+  INFO(marked.err);
+  REQUIRE(marked.code == 0);
+  REQUIRE(dir.run("render joined.json --no-joints" + view + "bare").code == 0);
+  REQUIRE(dir.run("render free.json" + view + "free").code == 0);
+  const Image with = read_png(dir.path() / "marked" / "frame_00000.png");
+  const Image without = read_png(dir.path() / "bare" / "frame_00000.png");
+  const Image free = read_png(dir.path() / "free" / "frame_00000.png");
+  CHECK(without.rgba != free.rgba);  // (framed differently: the pivot 1 m above the bob)
+
+  auto count = [](const Image& img, auto&& is) {
+    int n = 0;
+    for (std::size_t i = 0; i < img.rgba.size(); i += 4) n += is(img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]) ? 1 : 0;
+    return n;
+  };
+  auto blue = [](int r, int g, int b) { return b > r + 80 && b > g + 40; };
+  const int blue_with = count(with, blue), blue_without = count(without, blue);
+  // The rod: pixels darker in the marked picture than in the bare one, above the bob's topmost red pixel.
+  int bob_top = with.height, rod = 0;
+  for (int y = 0; y < with.height; ++y)
+    for (int x = 0; x < with.width / 3; ++x) {  // (the bob is left of the door, which hangs at x = 1)
+      const std::uint8_t* p = &without.rgba[std::size_t(4 * (y * with.width + x))];
+      if (p[0] > 2 * p[1] + 20 && p[0] > 2 * p[2] + 20) bob_top = std::min(bob_top, y);
+    }
+  for (int y = 0; y < bob_top; ++y)
+    for (int x = 0; x < with.width / 3; ++x) {
+      const std::size_t i = std::size_t(4 * (y * with.width + x));
+      rod += with.rgba[i] + 40 < without.rgba[i] && std::abs(int(with.rgba[i]) - int(with.rgba[i + 2])) < 30;
+    }
+  INFO("blue pixels " << blue_with << " (bare " << blue_without << "), rod pixels above the bob (row " << bob_top << "): " << rod);
+  CHECK(bob_top < with.height);
+  CHECK(blue_with >= 40);
+  CHECK(blue_without == 0);
+  CHECK(rod >= 20);
+}
