@@ -168,6 +168,25 @@ def dominoes_push():
     return hand_script(keys, [0, 0, 0])
 
 
+def chain_swing():
+    """The 4D chain (scenes/chain_4d.json, identity tracking): take its free end at once, before it falls,
+    and hold it up, the chain sagging between the beam and the hand; swing it out of the x-y plane (toward
+    +z), down and round to the other side, fling it up and let go at 3 s: it swings free, whipping and
+    knocking itself, for 7 s."""
+    end = [1.84, 1.975, 0]  # link_11's centre, the chain's free end
+    t0 = [("z", 0)]
+    keys = [
+        (0.0, end, t0, 1.0, False),               # grab at once: it is about to fall
+        (0.8, [1.2, 1.5, 0], t0, 1.0, False),     # hold it up, the chain sagging
+        (1.6, [0.7, 0.6, 0.8], t0, 1.0, False),   # swing it down and out toward +z
+        (2.4, [-0.4, 0.8, 0.5], t0, 1.0, False),  # round under the beam to the other side
+        (3.0, [-0.9, 1.4, -0.2], t0, 1.0, False),  # fling it up
+        (3.05, [-0.92, 1.45, -0.2], t0, 0.0, False),  # let go
+        (10.0, [-0.92, 1.45, -0.2], t0, 0.0, False),
+    ]
+    return hand_script(keys, [0, 0, 0])
+
+
 def main():
     with open("scenes/toy_table_4d.json", "w") as f:
         json.dump(toy_table(), f, indent=2)
@@ -175,6 +194,7 @@ def main():
     write("recordings/scripted/toy_table_grab.jsonl", "script", toy_table_grab())
     write("recordings/scripted/toy_table_tilt.jsonl", "script", toy_table_tilt())
     write("recordings/scripted/dominoes_push.jsonl", "script", dominoes_push())
+    write("recordings/scripted/chain_swing.jsonl", "script", chain_swing())
 
 
 if __name__ == "__main__":

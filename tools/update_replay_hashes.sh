@@ -13,6 +13,7 @@ replays=(
   "toy_table_tilt|scenes/toy_table_4d.json|recordings/scripted/toy_table_tilt.jsonl"
   "toy_table_grab_and_tilt|scenes/toy_table_4d.json|recordings/scripted/toy_table_grab.jsonl recordings/scripted/toy_table_tilt.jsonl"
   "dominoes_push|scenes/fig3_dominoes_4d.json|recordings/scripted/dominoes_push.jsonl"
+  "chain_swing|scenes/chain_4d.json|recordings/scripted/chain_swing.jsonl"
   "quest2_toy_table|scenes/toy_table_4d.json|recordings/quest2/sample_movement.jsonl"
   "coremotion_toy_table|scenes/toy_table_4d.json|recordings/coremotion/kinetic_tremor.jsonl"
 )
