@@ -85,6 +85,18 @@ bool holds_orientation(const JointConstraint<N>& j) {
   return j.type == JointType::Revolute || j.type == JointType::Prismatic || j.type == JointType::Weld;
 }
 
+// Whether the joint has angular rows to solve: the weld's and the prismatic's k, the revolute's k - 1 off
+// its plane (none in 2D, where the one plane is the revolute's own: it is a point joint and its angle).
+template <int N>
+bool has_turn_rows(const JointConstraint<N>& j) {
+  return holds_orientation(j) && (N > 2 || j.type != JointType::Revolute);
+}
+// Whether a revolute joint's own row along its plane acts (a motor or limits).
+template <int N>
+bool has_plane_row(const JointConstraint<N>& j) {
+  return j.type == JointType::Revolute && (j.motor || j.limit);
+}
+
 // The frame a revolute or prismatic joint takes from body a (the revolute's plane and angle: u_b's turn
 // from u_a toward v_a, unwrapped past pi; the prismatic's axis), and with `with_turn` the orientation
 // error: the turn (a bivector of angles, world) that would bring body b to where it belongs relative to
@@ -96,12 +108,14 @@ void place_orientation(const std::vector<Body<N>>& bodies, JointConstraint<N>& j
   const Rotor<N>& rb = bodies[j.b].rotor;
   if (j.type == JointType::Prismatic) j.axis = rotate(ra, j.axis_local);
   if (j.type == JointType::Revolute) {
-    j.plane = rotate(ra, j.plane_local);
+    j.plane = N == 2 ? j.plane_local : rotate(ra, j.plane_local);  // (a 2D rotation leaves the plane as it is)
     const Vec<N> ua = rotate(ra, j.u_a), va = rotate(ra, j.v_a), ub = rotate(rb, j.u_b);
     const double raw = std::atan2(ub.dot(va), ub.dot(ua)) - j.angle_offset;
-    j.angle += std::remainder(raw - j.angle, 2.0 * std::numbers::pi);
+    // The change since the last placing, into (-pi, pi] (remainder, exactly, is only needed past pi).
+    const double change = raw - j.angle;
+    j.angle += std::abs(change) <= std::numbers::pi ? change : std::remainder(change, 2.0 * std::numbers::pi);
   }
-  if (!with_turn) return;
+  if (!with_turn || !has_turn_rows(j)) return;
   Rotor<N> target = ra * j.reference;
   if (j.type == JointType::Revolute) target = exp<N>(j.plane * (-0.5 * j.angle)) * target;
   j.turn = log<N>(target * reverse(rb)) * -2.0;
@@ -146,6 +160,11 @@ template <int N>
 bool prepare_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j) {
   BivMat<N> m = v.mb->inv_inertia;
   if (v.a) m += v.ma->inv_inertia;
+  if (!has_turn_rows(j)) {  // (a 2D revolute joint: its plane's row only)
+    const double along = j.plane.c.dot(m * j.plane.c);
+    j.plane_mass = along > 0.0 ? 1.0 / along : 0.0;
+    return !has_plane_row(j) || along > 0.0;
+  }
   if (j.type == JointType::Revolute) {
     const Eigen::Matrix<double, kBiv<N>, 1> p = j.plane.c;
     const BivMat<N> off = BivMat<N>::Identity() - p * p.transpose();
@@ -373,8 +392,12 @@ void solve_prismatic(const JointBodiesView<N>& v, JointConstraint<N>& j, const S
 template <int N>
 void solve_angular_joint(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias,
                          double h) {
-  if (j.type == JointType::Revolute) solve_plane_row(v, j, soft, use_bias, h);
+  if (has_plane_row(j)) solve_plane_row(v, j, soft, use_bias, h);
   const double ahead = use_bias ? h : 0.0;
+  if (!has_turn_rows(j)) {  // (a 2D revolute joint)
+    solve_point(v, j, soft, use_bias, ahead);
+    return;
+  }
   if (j.spring) {
     solve_orientation(v, j, j.spring_soft, true);
     solve_point(v, j, j.spring_soft, true, ahead);
@@ -417,7 +440,7 @@ void warm_start_joints(ContactState<N>& s) {
     if (!j.active) continue;
     const JointBodiesView<N> v = view(s, j);
     apply(v, j, joint_impulse(j));
-    if (holds_orientation(j)) apply_turn(v, turn_impulse(j));
+    if (has_turn_rows(j) || has_plane_row(j)) apply_turn(v, turn_impulse(j));
   }
 }
 
