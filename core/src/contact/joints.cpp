@@ -224,17 +224,15 @@ Vec<N> anchor_curvature(const JointBodiesView<N>& v, const JointConstraint<N>& j
   return q;
 }
 
-// One row along the axis: the impulse that brings the axial velocity plus `ahead` to -bias (softened),
-// accumulated in `total` and clamped below at 0 where `one_sided`.
+// A distance joint's row along its axis (a rod, or a spring): the impulse that brings the axial velocity
+// plus `ahead` to -bias (softened), accumulated in `total`.
 template <int N>
-double solve_axial_row(const JointBodiesView<N>& v, JointConstraint<N>& j, double sign, double bias, const Softness& soft,
-                       double& total, bool one_sided, double ahead = 0.0) {
-  const double u = sign * (j.axis.dot(relative_anchor_velocity(v, j)) + ahead);
-  double change = -soft.mass_scale * j.axial_mass * (u + bias) - soft.impulse_scale * total;
-  if (one_sided) change = std::max(total + change, 0.0) - total;
+void solve_axial_row(const JointBodiesView<N>& v, JointConstraint<N>& j, double bias, const Softness& soft,
+                     double& total, double ahead = 0.0) {
+  const double u = j.axis.dot(relative_anchor_velocity(v, j)) + ahead;
+  const double change = -soft.mass_scale * j.axial_mass * (u + bias) - soft.impulse_scale * total;
   total += change;
-  apply(v, j, Vec<N>(sign * change * j.axis));
-  return change;
+  apply(v, j, Vec<N>(change * j.axis));
 }
 
 // The solve pass aims at the anchors' positions at the end of the sub-step, not at their velocities
@@ -265,18 +263,33 @@ double distance_curvature(const JointBodiesView<N>& v, const JointConstraint<N>&
   return std::max(u.squaredNorm() - along * along, 0.0) / j.distance + j.axis.dot(anchor_curvature(v, j, h));
 }
 
-// A one-sided row along the axis (a limit, impulses >= 0): a limit the anchors are still inside may close
-// by its gap in the sub-step and no more (speculative, rigid); one they are beyond is pushed back softly
-// in the solve pass.
+// A limit's one-sided row (its accumulated impulse `total` stays >= 0), linear or angular: a limit still
+// open by `gap` may close by it in the sub-step and no more (speculative, rigid); one already passed is
+// pushed back softly in the solve pass. `speed`: the row's closing velocity now (toward the limit is
+// negative), `mass`: its effective mass. Returns the change of `total`, to apply along the row.
+inline double limit_row_change(double gap, double speed, double mass, double h, const Softness& soft, bool use_bias,
+                               double& total) {
+  double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+  if (gap > 0.0) {
+    bias = gap / h;
+  } else if (use_bias) {
+    bias = soft.bias_rate * gap;
+    mass_scale = soft.mass_scale;
+    impulse_scale = soft.impulse_scale;
+  }
+  double change = -mass_scale * mass * (speed + bias) - impulse_scale * total;
+  change = std::max(total + change, 0.0) - total;
+  total += change;
+  return change;
+}
+
+// A limit along the axis (limit_row_change), `sign` 1 for a lower limit, -1 for an upper one.
 template <int N>
 void solve_axial_limit(const JointBodiesView<N>& v, JointConstraint<N>& j, double gap, double sign, double& total,
                        const Softness& soft, bool use_bias, double h, double ahead) {
-  const Softness rigid{};
-  if (gap > 0.0) {
-    solve_axial_row(v, j, sign, gap / h, rigid, total, true, ahead);
-  } else {
-    solve_axial_row(v, j, sign, use_bias ? soft.bias_rate * gap : 0.0, use_bias ? soft : rigid, total, true, ahead);
-  }
+  const double speed = sign * (j.axis.dot(relative_anchor_velocity(v, j)) + ahead);
+  const double change = limit_row_change(gap, speed, j.axial_mass, h, soft, use_bias, total);
+  apply(v, j, Vec<N>(sign * change * j.axis));
 }
 
 template <int N>
@@ -288,11 +301,11 @@ void solve_distance(const JointBodiesView<N>& v, JointConstraint<N>& j, const So
   if (!j.spring || j.min_length >= j.max_length) {
     const double length = j.spring ? j.min_length : j.length;
     const double bias = use_bias ? soft.bias_rate * (j.distance - length) : 0.0;
-    solve_axial_row(v, j, 1.0, bias, correction, j.impulse, false, ahead);
+    solve_axial_row(v, j, bias, correction, j.impulse, ahead);
     return;
   }
   if (j.frequency > 0.0)  // (the spring is physics, not a correction: both passes)
-    solve_axial_row(v, j, 1.0, j.spring_soft.bias_rate * (j.distance - j.length), j.spring_soft, j.impulse, false);
+    solve_axial_row(v, j, j.spring_soft.bias_rate * (j.distance - j.length), j.spring_soft, j.impulse);
   if (j.min_length > 0.0) solve_axial_limit(v, j, j.distance - j.min_length, 1.0, j.lower_impulse, soft, use_bias, h, ahead);
   if (std::isfinite(j.max_length))
     solve_axial_limit(v, j, j.max_length - j.distance, -1.0, j.upper_impulse, soft, use_bias, h, ahead);
@@ -328,18 +341,8 @@ void solve_plane_row(const JointBodiesView<N>& v, JointConstraint<N>& j, const S
   }
   if (!j.limit) return;
   const auto limit = [&](double gap, double sign, double& total) {
-    const double w = sign * p.dot(relative_angular_velocity(v));
-    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-    if (gap > 0.0) {
-      bias = gap / h;
-    } else if (use_bias) {
-      bias = soft.bias_rate * gap;
-      mass_scale = soft.mass_scale;
-      impulse_scale = soft.impulse_scale;
-    }
-    double change = -mass_scale * j.plane_mass * (w + bias) - impulse_scale * total;
-    change = std::max(total + change, 0.0) - total;
-    total += change;
+    const double speed = sign * p.dot(relative_angular_velocity(v));
+    const double change = limit_row_change(gap, speed, j.plane_mass, h, soft, use_bias, total);
     apply_turn(v, BivColumn<N>(sign * change * p));
   };
   limit(j.angle - j.lower_angle, 1.0, j.lower_angle_impulse);
