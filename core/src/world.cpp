@@ -84,8 +84,8 @@ void check_contact_settings(const ContactSettings& c) {
   if (c.substeps < 1 || c.substeps > 64) throw Error("contact.substeps must be in 1..64");
   if (!finite_nonneg(c.contact_hertz) || !finite_nonneg(c.contact_damping_ratio) || !finite_nonneg(c.contact_push_speed))
     throw Error("contact.contact_hertz (Hz), contact_damping_ratio and contact_push_speed (m/s) must be finite and >= 0");
-  if (!finite_nonneg(c.joint_hertz) || !finite_nonneg(c.joint_damping_ratio))
-    throw Error("contact.joint_hertz (Hz) and joint_damping_ratio must be finite and >= 0");
+  if (!finite_nonneg(c.joint_hertz) || !finite_nonneg(c.joint_damping_ratio) || !finite_nonneg(c.joint_angular_hertz))
+    throw Error("contact.joint_hertz, joint_angular_hertz (Hz) and joint_damping_ratio must be finite and >= 0");
   if (!finite_nonneg(c.restitution_threshold)) throw Error("contact.restitution_threshold must be finite and >= 0 (m/s)");
   if (!finite_nonneg(c.recycle_distance) || !finite_nonneg(c.recycle_angle))
     throw Error("contact.recycle_distance (m) and recycle_angle (rad) must be finite and >= 0");

@@ -126,6 +126,7 @@ ContactSettings read_contact_settings(const Node& node) {
   c.contact_push_speed = read_ranged(obj, "contact_push_speed", c.contact_push_speed, 0.0, 1e6, ">= 0 m/s");
   c.joint_hertz = read_ranged(obj, "joint_hertz", c.joint_hertz, 0.0, 1e6, ">= 0 Hz");
   c.joint_damping_ratio = read_ranged(obj, "joint_damping_ratio", c.joint_damping_ratio, 0.0, 1e6, ">= 0");
+  c.joint_angular_hertz = read_ranged(obj, "joint_angular_hertz", c.joint_angular_hertz, 0.0, 1e6, ">= 0 Hz");
   c.restitution_threshold = read_ranged(obj, "restitution_threshold", c.restitution_threshold, 0.0, 1e6, ">= 0 m/s");
   c.recycle_distance = read_ranged(obj, "recycle_distance", c.recycle_distance, 0.0, 1e3, "in [0, 1000] m");
   c.recycle_angle = read_ranged(obj, "recycle_angle", c.recycle_angle, 0.0, 3.2, "in [0, 3.2] rad");

@@ -158,7 +158,8 @@ struct JointSolver {
   std::vector<std::uint64_t> no_collide;
   bool any_active = false;  // this sub-step: some joint acts (prepare_joints)
   double h = 0.0;           // s, the sub-step prepare_joints last prepared for (the reaction forces)
-  Softness soft;            // the joints' error correction in that sub-step
+  Softness soft;            // the joints' error correction (their angular rows': turn_soft) in that sub-step
+  Softness turn_soft;
 };
 
 // Everything the contact stages keep between and during steps: each group's state, the solver's copies

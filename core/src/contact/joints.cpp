@@ -15,7 +15,8 @@
 //                   anchor b): (Q K Q + n n^T) j = -Q (u + bias_rate C), Q = 1 - n n^T; the axis' own row
 //                   carries the motor and the limits; the weld's angular rows hold the orientation.
 // In the solve pass the error is corrected at the joint spring's rate (ContactSettings::joint_hertz and
-// joint_damping_ratio, wedge/softness.hpp); the relax pass solves the velocity rows alone (no bias, full
+// joint_damping_ratio, wedge/softness.hpp; the angular rows and a revolute joint's angle limits at
+// joint_angular_hertz); the relax pass solves the velocity rows alone (no bias, full
 // mass), so the correction leaves no velocity behind.
 #include <algorithm>
 #include <cmath>
@@ -331,7 +332,8 @@ void apply_turn(const JointBodiesView<N>& v, const BivColumn<N>& l) {
 // The revolute's own row along its plane: the motor (toward motor_speed, at most max_motor_torque), then
 // the angle limits (one-sided; speculative while inside them, softly pushed back once past).
 template <int N>
-void solve_plane_row(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias, double h) {
+void solve_plane_row(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& turn_soft, bool use_bias,
+                     double h) {
   const BivColumn<N> p = j.plane.c;
   if (j.motor) {
     const double w = p.dot(relative_angular_velocity(v));
@@ -342,7 +344,7 @@ void solve_plane_row(const JointBodiesView<N>& v, JointConstraint<N>& j, const S
   if (!j.limit) return;
   const auto limit = [&](double gap, double sign, double& total) {
     const double speed = sign * p.dot(relative_angular_velocity(v));
-    const double change = limit_row_change(gap, speed, j.plane_mass, h, soft, use_bias, total);
+    const double change = limit_row_change(gap, speed, j.plane_mass, h, turn_soft, use_bias, total);
     apply_turn(v, BivColumn<N>(sign * change * p));
   };
   limit(j.angle - j.lower_angle, 1.0, j.lower_angle_impulse);
@@ -368,8 +370,9 @@ void solve_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j, const
 // A prismatic joint: its angular rows (all k), the motor and the limits along its axis, then the point
 // rows across it, which aim, as solve_point's do, at the end of the sub-step.
 template <int N>
-void solve_prismatic(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias, double h) {
-  solve_orientation(v, j, soft, use_bias);
+void solve_prismatic(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft,
+                     const Softness& turn_soft, bool use_bias, double h) {
+  solve_orientation(v, j, turn_soft, use_bias);
   if (j.motor) {
     const double u = j.axis.dot(relative_anchor_velocity(v, j));
     const double most = j.max_motor_force * h, old = j.motor_impulse;
@@ -393,9 +396,9 @@ void solve_prismatic(const JointBodiesView<N>& v, JointConstraint<N>& j, const S
 // A revolute or weld joint: its angular rows, then its point rows. A soft weld is a spring in both
 // passes (its own frequency), as a distance joint's spring is.
 template <int N>
-void solve_angular_joint(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft, bool use_bias,
-                         double h) {
-  if (has_plane_row(j)) solve_plane_row(v, j, soft, use_bias, h);
+void solve_angular_joint(const JointBodiesView<N>& v, JointConstraint<N>& j, const Softness& soft,
+                         const Softness& turn_soft, bool use_bias, double h) {
+  if (has_plane_row(j)) solve_plane_row(v, j, turn_soft, use_bias, h);
   const double ahead = use_bias ? h : 0.0;
   if (!has_turn_rows(j)) {  // (a 2D revolute joint)
     solve_point(v, j, soft, use_bias, ahead);
@@ -406,7 +409,7 @@ void solve_angular_joint(const JointBodiesView<N>& v, JointConstraint<N>& j, con
     solve_point(v, j, j.spring_soft, true, ahead);
     return;
   }
-  solve_orientation(v, j, soft, use_bias);
+  solve_orientation(v, j, turn_soft, use_bias);
   solve_point(v, j, soft, use_bias, ahead);
 }
 
@@ -428,6 +431,7 @@ bool prepare_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, cons
   if (js.slots.empty()) return false;
   js.h = h;
   js.soft = make_softness(std::min(settings.joint_hertz, 0.25 / h), settings.joint_damping_ratio, h);
+  js.turn_soft = make_softness(std::min(settings.joint_angular_hertz, 0.25 / h), settings.joint_damping_ratio, h);
   for (JointConstraint<N>& j : js.slots) {
     j.active = j.live && (moves(s, bodies, j.b) || (j.a >= 0 && moves(s, bodies, j.a)));
     if (!j.active) continue;
@@ -465,11 +469,11 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
         solve_distance(v, j, js.soft, use_bias, js.h);
         break;
       case JointType::Prismatic:
-        solve_prismatic(v, j, js.soft, use_bias, js.h);
+        solve_prismatic(v, j, js.soft, js.turn_soft, use_bias, js.h);
         break;
       case JointType::Revolute:
       case JointType::Weld:
-        solve_angular_joint(v, j, js.soft, use_bias, js.h);
+        solve_angular_joint(v, j, js.soft, js.turn_soft, use_bias, js.h);
         break;
     }
   }
