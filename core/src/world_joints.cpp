@@ -201,7 +201,7 @@ template <int N>
 double World<N>::joint_angle(JointId id) const {
   const contact::JointConstraint<N>& j = contact_->joints.slots[check(id)];
   if (j.type != JointType::Revolute) throw Error("joint_angle: joint " + std::to_string(id.index) + " is not a revolute joint");
-  return j.angle;
+  return contact::joint_angle_now(j, bodies_);
 }
 
 template <int N>

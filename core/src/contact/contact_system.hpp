@@ -156,9 +156,9 @@ struct JointSolver {
   // The joined pairs whose bodies do not collide (JointBodies::collide_connected false), as sorted keys
   // (a << 32 | b, a < b), which the pair list leaves out (pairs.cpp). World keeps it.
   std::vector<std::uint64_t> no_collide;
-  bool any_active = false;  // this sub-step: some joint acts (prepare_joints)
+  bool any_active = false;  // this step: some joint acts (prepare_joints)
   double h = 0.0;           // s, the sub-step prepare_joints last prepared for (the reaction forces)
-  Softness soft;            // the joints' error correction (their angular rows': turn_soft) in that sub-step
+  Softness soft;            // the joints' error correction (their angular rows': turn_soft) in that step's sub-steps
   Softness turn_soft;
 };
 
@@ -293,16 +293,20 @@ template <int N>
 void warm_start_grabs(ContactState<N>& state);
 template <int N>
 double solve_grabs(ContactState<N>& state);
-// joints.cpp (soft step only): each sub-step, every live joint's lever arms, error and masses from the
-// bodies' poses (true if one acts), its accumulated impulses applied, and one pass (use_bias: the solve
-// pass, else the relax pass). joint_impulse: the accumulated impulse on body b (N s, world).
+// joints.cpp (soft step only): at a step's first sub-step, every live joint's effective masses from the
+// bodies' poses (true if one acts; later sub-steps return that); each sub-step, each joint placed (lever
+// arms and error from the poses now) and its accumulated impulses applied, then one pass (use_bias: the
+// solve pass, else the relax pass, which places it again). joint_impulse: the accumulated impulse on
+// body b (N s, world); joint_angle_now: a revolute joint's angle at the bodies' poses now (rad).
 template <int N>
 bool prepare_joints(ContactState<N>& state, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                     double h);
 template <int N>
-void warm_start_joints(ContactState<N>& state);
+void warm_start_joints(ContactState<N>& state, const std::vector<Body<N>>& bodies);
 template <int N>
 void solve_joints(ContactState<N>& state, const std::vector<Body<N>>& bodies, bool use_bias);
+template <int N>
+double joint_angle_now(const JointConstraint<N>& joint, const std::vector<Body<N>>& bodies);
 template <int N>
 Vec<N> joint_impulse(const JointConstraint<N>& joint);
 // The accumulated turn impulse on body b (N m s, world; zero for point and distance joints).

@@ -1,6 +1,7 @@
-// A joint's slot (internal): what World::add_joint derived from its definition, what the current
-// sub-step derived from the bodies' poses (joints.cpp, prepare_joints), and the accumulated impulses
-// that warm start the next sub-step and step.
+// A joint's slot (internal): what World::add_joint derived from its definition, what the step and its
+// current sub-step derived from the bodies' poses (joints.cpp: prepare_joints once a step, the effective
+// masses; each sub-step's placing, the lever arms and errors), and the accumulated impulses that warm
+// start the next sub-step and step.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +19,8 @@ struct JointConstraint {
   // is hundreds of bytes and a pass over a large world's joints is limited by memory.)
   JointType type = JointType::Point;
   bool live = false;
-  bool active = false;                       // this sub-step: live, with a body that moves (prepare_joints)
+  bool active = false;                       // this step: live, with a body that moves (prepare_joints)
+  bool angle_each_substep = false;           // revolute, this step: its angle taken at every placing
   bool spring = false;                       // distance: a spring (DistanceJointDef); weld: soft
   bool limit = false, motor = false;         // revolute, prismatic (distance limits: spring, min/max_length)
   bool collide_connected = false;
@@ -27,12 +29,12 @@ struct JointConstraint {
   // m: each anchor from its body's centre of mass, in the body's frame (a = -1: the world point itself)
   Vec<N> local_a = Vec<N>::Zero(), local_b = Vec<N>::Zero();
 
-  // This sub-step (prepare_joints): m, world: the anchors from the centres of mass (prismatic: ra reaches
+  // This sub-step (its placing): m, world: the anchors from the centres of mass (prismatic: ra reaches
   // anchor b, as the axis turns with a), and anchor b - anchor a.
   Vec<N> ra = Vec<N>::Zero(), rb = Vec<N>::Zero();
   Vec<N> separation = Vec<N>::Zero();
-  Mat<N> mass = Mat<N>::Zero();              // point: K^-1, K the anchors' relative effective mass matrix;
-                                             // prismatic: the rows across the axis' (prepare_joint)
+  Mat<N> mass = Mat<N>::Zero();              // this step: point: K^-1, K the anchors' relative effective
+                                             // mass matrix; prismatic: the rows across the axis' (prepare_joint)
   // Accumulated impulses (N s) on body b (body a takes their opposite), kept between sub-steps and
   // steps: the warm start.
   Vec<N> linear_impulse = Vec<N>::Zero();    // point, revolute, weld; prismatic: across the axis
@@ -42,7 +44,7 @@ struct JointConstraint {
   Bivector<N> plane_local{};
   Vec<N> u_a = Vec<N>::Zero(), v_a = Vec<N>::Zero(), u_b = Vec<N>::Zero();
   double angle_offset = 0.0;
-  double angle = 0.0;  // rad, revolute: the angle at the last placing (unwrapped: it may pass pi)
+  double angle = 0.0;  // rad, revolute: the angle at the last placing that took it (unwrapped: it may pass pi)
   double lower_angle = 0.0, upper_angle = 0.0, motor_speed = 0.0, max_motor_torque = 0.0;  // rad, rad/s, N m
   // Revolute and weld joints: body b's orientation relative to a's when the joint was added, ~R_a R_b
   // (R_b with the world as a).
@@ -56,7 +58,7 @@ struct JointConstraint {
   double lower_translation = 0.0, upper_translation = 0.0, max_motor_force = 0.0;
   double translation = 0.0;
 
-  // This sub-step (prepare_joints), the other joints' rows.
+  // The other joints' rows: the axes and planes this sub-step (its placing), the masses this step.
   Vec<N> axis = Vec<N>::Zero();              // distance: the unit direction from anchor a to anchor b;
                                              // prismatic: the axis, world
   double distance = 0.0;                     // m, distance: |separation|

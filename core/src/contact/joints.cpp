@@ -1,6 +1,7 @@
-// Joints in the soft step (wedge/joint.hpp): each sub-step derives every joint's lever arms, error and
-// effective mass from the bodies' poses (prepare_joints), applies its accumulated impulses (warm start)
-// and solves it before the contacts in the solve and the relax pass (solve_joints), as Box2D v3 does.
+// Joints in the soft step (wedge/joint.hpp): each step derives every joint's effective masses from the
+// bodies' poses at its start (prepare_joints); each sub-step places the joint (its lever arms and error
+// from the poses now) as it applies its accumulated impulses (warm start), and solves it before the
+// contacts in the solve and the relax pass (solve_joints), as Box2D v3 does.
 //
 // A joint between bodies a and b holds anchor points p_a = x_a + r_a and p_b = x_b + r_b. An impulse j
 // on b at p_b (and -j on a at p_a) changes the anchors' relative velocity
@@ -98,23 +99,43 @@ bool has_plane_row(const JointConstraint<N>& j) {
   return j.type == JointType::Revolute && (j.motor || j.limit);
 }
 
-// The frame a revolute or prismatic joint takes from body a (the revolute's plane and angle: u_b's turn
-// from u_a toward v_a, unwrapped past pi; the prismatic's axis), and with `with_turn` the orientation
-// error: the turn (a bivector of angles, world) that would bring body b to where it belongs relative to
-// a, -2 log(R_target ~R_b), R_target = R_a R_ref, the revolute's turned by its angle in the plane:
-// R_target = exp(-angle p / 2) R_a R_ref.
+template <int N>
+Rotor<N> rotor_a(const std::vector<Body<N>>& bodies, const JointConstraint<N>& j) {
+  return j.a >= 0 ? bodies[j.a].rotor : Rotor<N>::identity();
+}
+
+// A revolute joint's angle now: u_b's turn from u_a toward v_a, less its value when the joint was added,
+// taken the nearer way round from the angle at the last placing (so it may pass pi).
+template <int N>
+double revolute_angle(const Rotor<N>& ra, const Rotor<N>& rb, const JointConstraint<N>& j) {
+  const Vec<N> ua = rotate(ra, j.u_a), va = rotate(ra, j.v_a), ub = rotate(rb, j.u_b);
+  const double raw = std::atan2(ub.dot(va), ub.dot(ua)) - j.angle_offset;
+  // The change since the last placing, into (-pi, pi] (remainder, exactly, is only needed past pi).
+  const double change = raw - j.angle;
+  return j.angle + (std::abs(change) <= std::numbers::pi ? change : std::remainder(change, 2.0 * std::numbers::pi));
+}
+
+// Whether placing the joint derives its frame from body a (place_orientation): a prismatic joint's axis
+// always; a revolute joint's plane from 3D up (its rows need it) and its angle where the limits need it
+// each sub-step (else the angle is taken once a step, prepare_joints).
+template <int N>
+bool places_frame(const JointConstraint<N>& j) {
+  if (j.type == JointType::Prismatic) return true;
+  return j.type == JointType::Revolute && (N > 2 || j.angle_each_substep);
+}
+
+// The frame a revolute or prismatic joint takes from body a (the revolute's plane and angle; the
+// prismatic's axis), and with `with_turn` the orientation error: the turn (a bivector of angles, world)
+// that would bring body b to where it belongs relative to a, -2 log(R_target ~R_b), R_target = R_a R_ref,
+// the revolute's turned by its angle in the plane: R_target = exp(-angle p / 2) R_a R_ref.
 template <int N>
 void place_orientation(const std::vector<Body<N>>& bodies, JointConstraint<N>& j, bool with_turn) {
-  const Rotor<N> ra = j.a >= 0 ? bodies[j.a].rotor : Rotor<N>::identity();
+  const Rotor<N> ra = rotor_a(bodies, j);
   const Rotor<N>& rb = bodies[j.b].rotor;
   if (j.type == JointType::Prismatic) j.axis = rotate(ra, j.axis_local);
   if (j.type == JointType::Revolute) {
     j.plane = N == 2 ? j.plane_local : rotate(ra, j.plane_local);  // (a 2D rotation leaves the plane as it is)
-    const Vec<N> ua = rotate(ra, j.u_a), va = rotate(ra, j.v_a), ub = rotate(rb, j.u_b);
-    const double raw = std::atan2(ub.dot(va), ub.dot(ua)) - j.angle_offset;
-    // The change since the last placing, into (-pi, pi] (remainder, exactly, is only needed past pi).
-    const double change = raw - j.angle;
-    j.angle += std::abs(change) <= std::numbers::pi ? change : std::remainder(change, 2.0 * std::numbers::pi);
+    j.angle = revolute_angle(ra, rb, j);
   }
   if (!with_turn || !has_turn_rows(j)) return;
   Rotor<N> target = ra * j.reference;
@@ -122,10 +143,10 @@ void place_orientation(const std::vector<Body<N>>& bodies, JointConstraint<N>& j
   j.turn = log<N>(target * reverse(rb)) * -2.0;
 }
 
-// The lever arms and the error from the bodies' poses now (and a distance joint's axis, the frame of a
-// revolute or prismatic joint, and with `with_turn` the orientation error).
+// The lever arms and the error from the bodies' poses now (and a distance joint's axis; with
+// `with_frame` the frame of a revolute or prismatic joint, and with `with_turn` the orientation error).
 template <int N>
-void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j, bool with_turn) {
+void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j, bool with_frame, bool with_turn) {
   const Body<N>& b = bodies[j.b];
   j.rb = rotate(b.rotor, j.local_b);
   Vec<N> pa = j.local_a;
@@ -136,7 +157,7 @@ void place_joint(const std::vector<Body<N>>& bodies, JointConstraint<N>& j, bool
     pa = a.center + j.ra;
   }
   j.separation = b.center + j.rb - pa;
-  if (holds_orientation(j)) place_orientation(bodies, j, with_turn);
+  if (holds_orientation(j) && (with_frame || with_turn)) place_orientation(bodies, j, with_turn);
   if (j.type == JointType::Prismatic) {
     j.translation = j.axis.dot(j.separation);
     if (j.a >= 0) j.ra += j.separation;
@@ -178,15 +199,13 @@ bool prepare_orientation(const JointBodiesView<N>& v, JointConstraint<N>& j) {
   return all_finite(j.angular_mass);
 }
 
-// place_joint, then the effective masses. False if the joint cannot act (K not invertible: neither body
-// can move).
+// The point rows' and the axis' effective masses, from the lever arms and the axis of the joint's last
+// placing: each sub-step, as they turn with the bodies (a chain swinging fast strayed 9 cm at its pins
+// with the masses of the step's start, 5 mm with these). False if the joint cannot act (K not
+// invertible: neither body can move).
 template <int N>
-bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, JointConstraint<N>& j, double h) {
-  place_joint(bodies, j, true);
-  if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
-  const JointBodiesView<N> v = view(s, j);
+bool prepare_linear_rows(const JointBodiesView<N>& v, JointConstraint<N>& j) {
   const Mat<N> k = effective_mass_matrix(v, j);
-  if (holds_orientation(j) && !prepare_orientation(v, j)) return false;
   if (j.type == JointType::Prismatic) {
     const Mat<N> along = j.axis * j.axis.transpose(), across = Mat<N>::Identity() - along;
     const double axial = j.axis.dot(k * j.axis);
@@ -204,6 +223,18 @@ bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, Joint
   if (!(axial > 0.0)) return false;
   j.axial_mass = 1.0 / axial;
   return std::isfinite(j.axial_mass);
+}
+
+// At the step's first sub-step: the joint placed from the poses at the step's start, its spring, its
+// angular rows' effective masses for the whole step (the bodies' world inertias are the step's: the
+// solvers keep them through the sub-steps) and its linear rows'. False if the joint cannot act.
+template <int N>
+bool prepare_joint(ContactState<N>& s, const std::vector<Body<N>>& bodies, JointConstraint<N>& j, double h) {
+  place_joint(bodies, j, true, true);
+  if (j.spring) j.spring_soft = make_softness(j.frequency, j.damping_ratio, h);
+  const JointBodiesView<N> v = view(s, j);
+  if (holds_orientation(j) && !prepare_orientation(v, j)) return false;
+  return prepare_linear_rows(v, j);
 }
 
 // How the anchors' separation bends away from a straight line in the sub-step: the second derivative of
@@ -423,29 +454,43 @@ BivColumn<N> turn_impulse(const JointConstraint<N>& j) {
 
 }  // namespace
 
+// A revolute joint's angle is taken each sub-step where its limits need it, or where it turns so fast
+// (beyond kSubstepAngleTurn in a step) that once a step might not tell which way round it went.
+constexpr double kSubstepAngleTurn = 1.0;  // rad per step
+
 template <int N>
 bool prepare_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
                     double h) {
   JointSolver<N>& js = s.joints;
+  if (s.soft.substep > 0) return js.any_active;  // (prepared at the step's first sub-step)
   js.any_active = false;
   if (js.slots.empty()) return false;
   js.h = h;
   js.soft = make_softness(std::min(settings.joint_hertz, 0.25 / h), settings.joint_damping_ratio, h);
   js.turn_soft = make_softness(std::min(settings.joint_angular_hertz, 0.25 / h), settings.joint_damping_ratio, h);
+  const double step = h * settings.substeps;
   for (JointConstraint<N>& j : js.slots) {
     j.active = j.live && (moves(s, bodies, j.b) || (j.a >= 0 && moves(s, bodies, j.a)));
     if (!j.active) continue;
     j.active = prepare_joint(s, bodies, j, h);
+    if (j.type == JointType::Revolute) {
+      const JointBodiesView<N> v = view(s, j);
+      j.angle_each_substep = j.limit || std::abs(j.plane.c.dot(relative_angular_velocity(v))) * step > kSubstepAngleTurn;
+    }
     js.any_active = js.any_active || j.active;
   }
   return js.any_active;
 }
 
 template <int N>
-void warm_start_joints(ContactState<N>& s) {
+void warm_start_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies) {
   for (JointConstraint<N>& j : s.joints.slots) {
     if (!j.active) continue;
     const JointBodiesView<N> v = view(s, j);
+    if (s.soft.substep > 0) {  // (the first sub-step's placing is prepare_joints')
+      place_joint(bodies, j, places_frame(j), has_turn_rows(j));
+      prepare_linear_rows(v, j);
+    }
     apply(v, j, joint_impulse(j));
     if (has_turn_rows(j) || has_plane_row(j)) apply_turn(v, turn_impulse(j));
   }
@@ -459,7 +504,7 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
     if (!j.active) continue;
     // (the relax pass: the joint as the position update left it; the orientation error only for a soft
     // weld, whose spring acts in both passes)
-    if (!use_bias) place_joint(bodies, j, j.spring);
+    if (!use_bias) place_joint(bodies, j, places_frame(j), j.spring);
     const JointBodiesView<N> v = view(s, j);
     switch (j.type) {
       case JointType::Point:
@@ -480,6 +525,11 @@ void solve_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, bool u
 }
 
 template <int N>
+double joint_angle_now(const JointConstraint<N>& j, const std::vector<Body<N>>& bodies) {
+  return revolute_angle(rotor_a(bodies, j), bodies[j.b].rotor, j);
+}
+
+template <int N>
 Vec<N> joint_impulse(const JointConstraint<N>& j) {
   if (j.type == JointType::Distance) return axial_impulse(j) * j.axis;
   if (j.type == JointType::Prismatic)
@@ -496,7 +546,8 @@ Bivector<N> joint_turn_impulse(const JointConstraint<N>& j) {
 
 #define WEDGE_INSTANTIATE(N)                                                                                    \
   template bool prepare_joints<N>(ContactState<N>&, const std::vector<Body<N>>&, const ContactSettings&, double); \
-  template void warm_start_joints<N>(ContactState<N>&);                                                         \
+  template void warm_start_joints<N>(ContactState<N>&, const std::vector<Body<N>>&);                          \
+  template double joint_angle_now<N>(const JointConstraint<N>&, const std::vector<Body<N>>&);                  \
   template void solve_joints<N>(ContactState<N>&, const std::vector<Body<N>>&, bool);                                                        \
   template Vec<N> joint_impulse<N>(const JointConstraint<N>&);                                                  \
   template Bivector<N> joint_turn_impulse<N>(const JointConstraint<N>&);

@@ -443,7 +443,7 @@ void solve_substep(ContactState<N>& s, std::vector<Body<N>>& bodies, const Conta
     if (s.graph.constraints.empty() && !grabs && !joints) return;
     if (!fused) {
       if (grabs) warm_start_grabs(s);
-      if (joints) warm_start_joints(s);
+      if (joints) warm_start_joints(s, bodies);
       warm_start_substep(s);
       if (grabs) solve_grabs(s);
       if (joints) solve_joints(s, bodies, true);
