@@ -2,6 +2,7 @@
 // (contact/joint.hpp, solved by contact/joints.cpp), removal, and the queries on a joint.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "contact/contact_system.hpp"
@@ -55,9 +56,14 @@ contact::JointConstraint<N> World<N>::joint_bodies(const JointBodies<N>& def, Jo
 template <int N>
 JointId World<N>::insert_joint(const contact::JointConstraint<N>& joint) {
   auto& js = contact_->joints;
-  std::size_t slot = 0;
-  while (slot < js.slots.size() && js.slots[slot].live) ++slot;  // lowest free slot: a fixed, replayable order
-  if (slot == js.slots.size()) js.slots.emplace_back();
+  std::size_t slot = js.slots.size();
+  if (js.free_slots.empty()) {
+    js.slots.emplace_back();
+  } else {  // the lowest free slot: a fixed, replayable order
+    std::pop_heap(js.free_slots.begin(), js.free_slots.end(), std::greater<>{});
+    slot = js.free_slots.back();
+    js.free_slots.pop_back();
+  }
   contact::JointConstraint<N>& j = js.slots[slot];
   const std::uint32_t generation = j.generation + 1;
   j = joint;
@@ -215,7 +221,8 @@ double World<N>::joint_translation(JointId id) const {
 template <int N>
 void World<N>::remove_joint(JointId id) {
   auto& js = contact_->joints;
-  contact::JointConstraint<N>& j = js.slots[check(id)];
+  const std::size_t slot = check(id);
+  contact::JointConstraint<N>& j = js.slots[slot];
   if (j.a >= 0 && !j.collide_connected) {
     const auto at = std::lower_bound(js.no_collide.begin(), js.no_collide.end(), joined_key(j.a, j.b));
     js.no_collide.erase(at);  // (one of the pair's keys: each joint that joins them added one)
@@ -225,6 +232,8 @@ void World<N>::remove_joint(JointId id) {
   const std::uint32_t generation = j.generation;
   j = contact::JointConstraint<N>{};
   j.generation = generation;
+  js.free_slots.push_back(std::uint32_t(slot));
+  std::push_heap(js.free_slots.begin(), js.free_slots.end(), std::greater<>{});
 }
 
 template <int N>

@@ -156,6 +156,9 @@ struct JointSolver {
   // The joined pairs whose bodies do not collide (JointBodies::collide_connected false), as sorted keys
   // (a << 32 | b, a < b), which the pair list leaves out (pairs.cpp). World keeps it.
   std::vector<std::uint64_t> no_collide;
+  // The removed joints' slots, a min-heap: World::add_joint takes the lowest (a fixed, replayable order)
+  // without scanning the slots (World keeps it).
+  std::vector<std::uint32_t> free_slots;
   bool any_active = false;  // this step: some joint acts (prepare_joints)
   double h = 0.0;           // s, the sub-step prepare_joints last prepared for (the reaction forces)
   Softness soft;            // the joints' error correction (their angular rows': turn_soft) in that step's sub-steps

@@ -485,6 +485,13 @@ TEST_CASE("joints: bad definitions, the paper's solver and stale ids are refused
   CHECK(again.index == j.index);
   CHECK_FALSE(world.has_joint(j));
   world.remove_joint(again);
+  // Freed slots are taken lowest first, whatever order they were freed in; then new slots follow.
+  std::vector<JointId> five;
+  for (int i = 0; i < 5; ++i) five.push_back(world.add_joint(pin));
+  for (const int i : {3, 1, 2}) world.remove_joint(five[i]);
+  for (const std::uint32_t expected : {1u, 2u, 3u, 5u}) CHECK(world.add_joint(pin).index == expected);
+  CHECK(world.joint_count() == 6);
+  for (const JointId id : world.joint_ids()) world.remove_joint(id);
   world.update_settings([](auto& st) { st.contact.solver = ContactSolver::Paper; });
   refused(pin, "paper's contact solver");
 }
