@@ -455,8 +455,15 @@ BivColumn<N> turn_impulse(const JointConstraint<N>& j) {
 }  // namespace
 
 // A revolute joint's angle is taken each sub-step where its limits need it, or where it turns so fast
-// (beyond kSubstepAngleTurn in a step) that once a step might not tell which way round it went.
+// (beyond kSubstepAngleTurn in a step, now or at its motor's speed) that once a step might not tell which
+// way round it went.
 constexpr double kSubstepAngleTurn = 1.0;  // rad per step
+template <int N>
+bool angle_each_substep(const JointBodiesView<N>& v, const JointConstraint<N>& j, double step) {
+  const double spin = std::max(std::abs(j.plane.c.dot(relative_angular_velocity(v))),
+                               j.motor ? std::abs(j.motor_speed) : 0.0);
+  return j.limit || spin * step > kSubstepAngleTurn;
+}
 
 template <int N>
 bool prepare_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
@@ -473,10 +480,7 @@ bool prepare_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, cons
     j.active = j.live && (moves(s, bodies, j.b) || (j.a >= 0 && moves(s, bodies, j.a)));
     if (!j.active) continue;
     j.active = prepare_joint(s, bodies, j, h);
-    if (j.type == JointType::Revolute) {
-      const JointBodiesView<N> v = view(s, j);
-      j.angle_each_substep = j.limit || std::abs(j.plane.c.dot(relative_angular_velocity(v))) * step > kSubstepAngleTurn;
-    }
+    if (j.type == JointType::Revolute) j.angle_each_substep = angle_each_substep(view(s, j), j, step);
     js.any_active = js.any_active || j.active;
   }
   return js.any_active;

@@ -648,6 +648,45 @@ TEMPLATE_TEST_CASE("joints: a revolute joint keeps its bodies turning in its pla
   CHECK((world.joint_anchor_b(hinge) - world.joint_anchor_a(hinge)).norm() < 1e-3);
 }
 
+// Two wheels on one revolute joint at their common centre turn against each other by 5 rad a step (each
+// by 2.5 rad, below the pi a step that max_turn allows a body): the joint's angle must count every turn,
+// checked against each wheel's own angle, unwrapped step by step from its rotor. (A 2D revolute joint
+// without limits takes its angle once a step; turning fast, or driven by a fast motor, every sub-step.)
+TEST_CASE("joints: a 2D revolute joint counts the turns of wheels spinning apart fast", "[joints]") {
+  const double h = 1.0 / 120.0;
+  World<2> world;  // no gravity
+  const BodyId a = world.add_body(box<2>(Vec<2>(0.1, 0.1), 1000.0, Vec<2>(0.0, 0.0)));
+  const BodyId b = world.add_body(box<2>(Vec<2>(0.1, 0.1), 1000.0, Vec<2>(0.0, 0.0)));
+  RevoluteJointDef<2> def;
+  def.body_a = a;
+  def.body_b = b;
+  const bool motor = GENERATE(false, true);
+  CAPTURE(motor);
+  if (motor) {  // from rest, the motor turns them apart at 600 rad/s within the first sub-step
+    def.motor = true;
+    def.motor_speed = -600.0;
+    def.max_motor_torque = 1e6;
+  } else {  // already spinning apart
+    world.body(a).angular_velocity[0] = 300.0;
+    world.body(b).angular_velocity[0] = -300.0;
+  }
+  const JointId joint = world.add_joint(def);
+  const auto turn = [&](BodyId id) {
+    const Vec<2> x = rotate(world.body(id).rotor, Vec<2>(1.0, 0.0));
+    return std::atan2(x[1], x[0]);
+  };
+  double angle_a = 0.0, angle_b = 0.0;  // each wheel's turn, unwrapped: it turns by less than pi a step
+  const auto follow = [&](double& angle, double now) { angle += std::remainder(now - angle, 2.0 * M_PI); };
+  for (int i = 0; i < 60; ++i) {
+    world.step(h);
+    follow(angle_a, turn(a));
+    follow(angle_b, turn(b));
+  }
+  INFO("wheels " << angle_a << " and " << angle_b << " rad; joint " << world.joint_angle(joint) << " rad");
+  CHECK(std::abs(angle_b - angle_a) > 250.0);  // (about 5 rad a step for 60 steps)
+  CHECK(world.joint_angle(joint) == Approx(angle_b - angle_a).epsilon(1e-9));
+}
+
 // A motor spins a wheel up to its speed, never with more than its torque: with a torque limit T the
 // speed rises at T/I until it is reached.
 TEMPLATE_TEST_CASE("joints: a revolute motor reaches its speed within its torque", "[joints]", D2, D3, D4, D5, D6) {
