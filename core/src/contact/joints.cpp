@@ -452,8 +452,6 @@ BivColumn<N> turn_impulse(const JointConstraint<N>& j) {
 }
 
 
-}  // namespace
-
 // A revolute joint's angle is taken each sub-step where its limits need it, or where it turns so fast
 // (beyond kSubstepAngleTurn in a step, now or at its motor's speed) that once a step might not tell which
 // way round it went.
@@ -464,6 +462,8 @@ bool angle_each_substep(const JointBodiesView<N>& v, const JointConstraint<N>& j
                                j.motor ? std::abs(j.motor_speed) : 0.0);
   return j.limit || spin * step > kSubstepAngleTurn;
 }
+
+}  // namespace
 
 template <int N>
 bool prepare_joints(ContactState<N>& s, const std::vector<Body<N>>& bodies, const ContactSettings& settings,
